@@ -1,0 +1,12 @@
+file(GLOB FILES ${SRC_DIR}/scenes/*.toml ${SRC_DIR}/experiments/*.toml)
+list(SORT FILES)
+# Writes a C++ source holding every scene/experiment TOML file as a string, keyed by its relative path.
+set(body "#include \"io/embedded_data.hpp\"\nnamespace jellysim::io {\nconst std::vector<EmbeddedFile>& embedded_files() {\n  static const std::vector<EmbeddedFile> files = {\n")
+foreach(f IN LISTS FILES)
+  file(READ ${f} content)
+  file(RELATIVE_PATH rel ${SRC_DIR} ${f})
+  string(APPEND body "    {\"${rel}\", R\"jellysim_embed(${content})jellysim_embed\"},\n")
+endforeach()
+string(APPEND body "  };\n  return files;\n}\n}  // namespace jellysim::io\n")
+file(WRITE ${OUT}.new "${body}")
+file(COPY_FILE ${OUT}.new ${OUT} ONLY_IF_DIFFERENT)

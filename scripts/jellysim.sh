@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine: installs what is missing (apt-get), builds, then
+#   scripts/jellysim.sh run [jellysim run options]   runs the main job on the built-in default scene
+#   scripts/jellysim.sh test                         runs the whole test suite (Release, then ASan+UBSan)
+#   scripts/jellysim.sh build                        only installs and builds
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(build-essential cmake pkg-config libeigen3-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libplplot-dev plplot-driver-cairo fonts-dejavu-core)
+JOBS=$(nproc 2>/dev/null || echo 2)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "Installing Debian packages: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# build DIR [cmake options...]: configure once, then build incrementally; the log stays in DIR.
+build() {
+  local dir=$1; shift
+  echo "Building in $dir ..."
+  mkdir -p "$dir"
+  if ! { cmake -S . -B "$dir" -Wno-dev "$@" && cmake --build "$dir" -j"$JOBS"; } >"$dir/build.log" 2>&1; then
+    tail -n 60 "$dir/build.log" >&2
+    echo "build failed (full log: $dir/build.log)" >&2
+    exit 1
+  fi
+  grep -E 'warning:' "$dir/build.log" >&2 || true
+}
+
+build_release() { build build/release -DCMAKE_BUILD_TYPE=Release; }
+build_sanitized() {
+  build build/sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DJELLYSIM_SANITIZE=ON
+}
+
+command=${1:-run}
+[ $# -gt 0 ] && shift
+install_missing_packages
+case "$command" in
+  build) build_release ;;
+  run)
+    build_release
+    exec build/release/jellysim run "$@" ;;
+  test)
+    build_release
+    echo "== tests (Release) =="
+    ctest --test-dir build/release --output-on-failure -j"$JOBS" --timeout 600
+    build_sanitized
+    echo "== tests (AddressSanitizer + UndefinedBehaviorSanitizer) =="
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 ;;
+  *) echo "usage: scripts/jellysim.sh [run [options] | test | build]" >&2; exit 2 ;;
+esac

@@ -1,0 +1,162 @@
+#include "elastic/body.hpp"
+
+#include "elastic/forces.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace jellysim::elastic {
+
+namespace {
+
+void require_point(const Body& body, int index, const char* what) {
+  const auto n = static_cast<int>(body.points.size());
+  if (index < 0 || index >= n) {
+    throw std::invalid_argument(std::string(what) + " index " + std::to_string(index) +
+                                " is out of range [0, " + std::to_string(n - 1) + "]");
+  }
+}
+
+void require_non_negative(double value, const char* what) {
+  if (!(value >= 0.0 && std::isfinite(value))) {
+    throw std::invalid_argument(std::string(what) + " = " + std::to_string(value) +
+                                " must be finite and non-negative");
+  }
+}
+
+int append_point(PointMasses& points, Vec2 position, Vec2 velocity, double mass, PointKind kind, int motion) {
+  points.position.push_back(position);
+  points.velocity.push_back(velocity);
+  points.mass.push_back(mass);
+  points.kind.push_back(kind);
+  points.motion.push_back(motion);
+  return static_cast<int>(points.size()) - 1;
+}
+
+}  // namespace
+
+int Body::add_point(Vec2 position, double mass, PointKind kind, Vec2 velocity) {
+  if (kind == PointKind::Prescribed) {
+    throw std::invalid_argument("prescribed points are added with add_prescribed_point");
+  }
+  if (kind == PointKind::Free && !(mass > 0.0 && std::isfinite(mass))) {
+    throw std::invalid_argument("point mass = " + std::to_string(mass) + " must be positive and finite");
+  }
+  if (kind == PointKind::Pinned) velocity = {};
+  return append_point(points, position, velocity, mass, kind, -1);
+}
+
+int Body::add_prescribed_point(PrescribedMotion motion) {
+  if (!motion) throw std::invalid_argument("a prescribed point needs a motion function");
+  const PrescribedState start = motion(0.0);
+  prescribed.push_back(std::move(motion));
+  return append_point(points, start.position, start.velocity, 0.0, PointKind::Prescribed,
+                      static_cast<int>(prescribed.size()) - 1);
+}
+
+void Body::add_linear_spring(int i, int j, double stiffness, double rest_length) {
+  require_point(*this, i, "linear spring end");
+  require_point(*this, j, "linear spring end");
+  if (i == j) {
+    throw std::invalid_argument("a linear spring needs two distinct points, got " + std::to_string(i) + " twice");
+  }
+  require_non_negative(stiffness, "linear spring stiffness");
+  if (rest_length < 0.0) rest_length = norm(points.position[j] - points.position[i]);
+  require_non_negative(rest_length, "linear spring rest length");
+  linear.i.push_back(i);
+  linear.j.push_back(j);
+  linear.stiffness.push_back(stiffness);
+  linear.rest_length.push_back(rest_length);
+}
+
+void Body::add_angular_spring(int i, int j, int k, double stiffness, double rest_angle) {
+  for (int index : {i, j, k}) require_point(*this, index, "angular spring point");
+  if (i == j || j == k || i == k) {
+    throw std::invalid_argument("an angular spring needs three distinct points");
+  }
+  require_non_negative(stiffness, "angular spring stiffness");
+  if (std::isnan(rest_angle)) {
+    rest_angle = turning_angle(points.position[i], points.position[j], points.position[k]);
+  }
+  if (!std::isfinite(rest_angle)) throw std::invalid_argument("angular spring rest angle must be finite");
+  angular.i.push_back(i);
+  angular.j.push_back(j);
+  angular.k.push_back(k);
+  angular.stiffness.push_back(stiffness);
+  angular.rest_angle.push_back(rest_angle);
+}
+
+namespace {
+
+double elastic_energy(const Body& body) {
+  const auto& x = body.points.position;
+  double e = 0.0;
+  for (std::size_t s = 0; s < body.linear.size(); ++s) {
+    e += linear_spring_energy(x[body.linear.i[s]], x[body.linear.j[s]], body.linear.stiffness[s],
+                              body.linear.rest_length[s]);
+  }
+  const auto& ang = body.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    e += angular_spring_energy(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
+  }
+  return e;
+}
+
+void add_spring_forces(const Body& body, const std::vector<Vec2>& x, std::vector<Vec2>& force) {
+  const auto& lin = body.linear;
+  for (std::size_t s = 0; s < lin.size(); ++s) {
+    const Vec2 f = linear_spring_force(x[lin.i[s]], x[lin.j[s]], lin.stiffness[s], lin.rest_length[s]);
+    force[lin.i[s]] += f;
+    force[lin.j[s]] -= f;
+  }
+  const auto& ang = body.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    const AngularSpringForce f =
+        angular_spring_force(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
+    force[ang.i[s]] += f.on_i;
+    force[ang.j[s]] += f.on_j;
+    force[ang.k[s]] += f.on_k;
+  }
+}
+
+// Drag (eq. 2.17) on every point; gravity (eq. 2.18) on points of finite mass.
+void add_drag_and_gravity(const Body& body, const std::vector<Vec2>& x, const std::vector<Vec2>& v, double t,
+                          std::vector<Vec2>& force) {
+  const auto& pts = body.points;
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    if (body.drag_coefficient != 0.0) {
+      const Vec2 fluid = body.fluid_velocity ? body.fluid_velocity(x[p], t) : Vec2{};
+      force[p] += drag_force(v[p], fluid, body.drag_coefficient);
+    }
+    if (pts.kind[p] == PointKind::Free) force[p] += gravity_force(pts.mass[p], body.gravity);
+  }
+}
+
+}  // namespace
+
+Energy energy(const Body& body) {
+  Energy e;
+  const auto& pts = body.points;
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    if (pts.kind[p] != PointKind::Free) continue;
+    e.kinetic += 0.5 * pts.mass[p] * norm_squared(pts.velocity[p]);
+    e.gravity -= pts.mass[p] * dot(body.gravity, pts.position[p]);
+  }
+  e.elastic = elastic_energy(body);
+  return e;
+}
+
+void accumulate_forces(const Body& body, const std::vector<Vec2>& position, const std::vector<Vec2>& velocity,
+                       double t, std::vector<Vec2>& force) {
+  const std::size_t n = body.points.size();
+  if (position.size() != n || velocity.size() != n) {
+    throw std::invalid_argument("accumulate_forces: position/velocity sizes do not match the point count " +
+                                std::to_string(n));
+  }
+  force.assign(n, Vec2{});
+  add_spring_forces(body, position, force);
+  add_drag_and_gravity(body, position, velocity, t, force);
+}
+
+}  // namespace jellysim::elastic

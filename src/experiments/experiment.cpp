@@ -1,0 +1,51 @@
+#include "experiments/experiment.hpp"
+
+#include "io/embedded_data.hpp"
+#include "io/errors.hpp"
+
+#include <stdexcept>
+
+namespace jellysim::experiments {
+
+// Defined in one source file per experiment.
+Experiment swinging_bar_experiment();
+Experiment integrator_order_experiment();
+
+const std::vector<Experiment>& all_experiments() {
+  static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment()};
+  return list;
+}
+
+const Experiment& find_experiment(const std::string& name) {
+  std::string names;
+  for (const Experiment& e : all_experiments()) {
+    if (e.name == name) return e;
+    names += (names.empty() ? "" : ", ") + e.name;
+  }
+  throw InputError("unknown experiment '" + name + "' (known: " + names + ")");
+}
+
+std::string_view embedded_text(std::string_view path) {
+  for (const io::EmbeddedFile& f : io::embedded_files()) {
+    if (f.path == path) return f.content;
+  }
+  throw std::logic_error("embedded file missing from the build: " + std::string(path));
+}
+
+io::Config default_config(const Experiment& experiment) {
+  return io::Config::parse(embedded_text(experiment.definition_path), "built-in " + experiment.definition_path);
+}
+
+void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
+                   const nlohmann::ordered_json& figures, const std::string& failure) {
+  nlohmann::ordered_json summary;
+  summary["jellysim_version"] = JELLYSIM_VERSION;
+  summary["command"] = command;
+  summary["status"] = failure.empty() ? "ok" : "failed";
+  if (!failure.empty()) summary["failure"] = failure;
+  for (const auto& [key, value] : figures.items()) summary[key] = value;
+  summary["config"] = config.to_json();
+  out.write_json("summary.json", summary);
+}
+
+}  // namespace jellysim::experiments

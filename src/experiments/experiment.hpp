@@ -1,0 +1,48 @@
+#pragma once
+// Experiments and scenes are data (a TOML file each, compiled in) run by one generic command.
+// Each experiment is a function from its resolved configuration to files in an output directory.
+#include "io/config.hpp"
+#include "io/output.hpp"
+#include "sim/time_stepping.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace jellysim::experiments {
+
+/// What an experiment gets: its configuration (defaults + scene file + --set), where to write, and
+/// a progress callback for long runs (may be empty).
+struct Context {
+  io::Config config;
+  sim::ProgressCallback progress;
+};
+
+/// Result of an experiment run. `failure` non-empty means the run failed (exit code 1) after
+/// writing what it had.
+struct Outcome {
+  std::string failure;
+};
+
+/// An experiment validates its whole configuration in `prepare` (throwing InputError) before
+/// anything is written, then `run` writes its outputs.
+struct Experiment {
+  std::string name;
+  std::string description;
+  std::string definition_path;  ///< embedded TOML file with the defaults, e.g. "scenes/swinging-bar.toml"
+  std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare;
+};
+
+const std::vector<Experiment>& all_experiments();
+/// Finds an experiment by name; throws InputError listing the known names.
+const Experiment& find_experiment(const std::string& name);
+/// The experiment's default configuration, parsed from its embedded definition file.
+io::Config default_config(const Experiment& experiment);
+/// Text of an embedded file; throws std::logic_error when absent (a build error).
+std::string_view embedded_text(std::string_view path);
+
+/// Writes summary.json: status, version, command, key figures and the resolved configuration.
+void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
+                   const nlohmann::ordered_json& figures, const std::string& failure);
+
+}  // namespace jellysim::experiments

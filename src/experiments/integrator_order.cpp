@@ -1,0 +1,146 @@
+#include "experiments/integrator_order.hpp"
+
+#include "elastic/elastic_system.hpp"
+#include "experiments/experiment.hpp"
+#include "io/errors.hpp"
+#include "render/plot.hpp"
+
+#include <cmath>
+
+namespace jellysim::experiments {
+namespace {
+
+elastic::Body make_spring_pair(const SpringProblem& p) {
+  elastic::Body body;
+  const double half = 0.5 * (p.rest_length + p.amplitude);
+  body.add_point({-half, 0.0}, p.point_mass);
+  body.add_point({half, 0.0}, p.point_mass);
+  body.add_linear_spring(0, 1, p.stiffness, p.rest_length);
+  return body;
+}
+
+/// Exact state [x0, y0, x1, y1, vx0, vy0, vx1, vy1] at time t.
+ode::Vector exact_state(const SpringProblem& p, double t) {
+  const double w = p.omega();
+  const double half_length = 0.5 * (p.rest_length + p.amplitude * std::cos(w * t));
+  const double half_rate = -0.5 * p.amplitude * w * std::sin(w * t);
+  ode::Vector y(8);
+  y << -half_length, 0.0, half_length, 0.0, -half_rate, 0.0, half_rate, 0.0;
+  return y;
+}
+
+ConvergenceRun run_fixed_steps(ode::Integrator& integrator, const SpringProblem& p, int steps) {
+  elastic::Body body = make_spring_pair(p);
+  elastic::ElasticSystem system(body);
+  ode::Vector y = system.pack_state(), y_next(y.size());
+  const double dt = p.end_time / steps;
+  integrator.reset();
+  for (int n = 0; n < steps; ++n) {
+    if (!integrator.step(system, n * dt, dt, y, y_next, nullptr).ok) {
+      throw RunError(std::string(integrator.name()) + " failed a step of " + io::format_double(dt));
+    }
+    y.swap(y_next);
+  }
+  return {dt, (y - exact_state(p, p.end_time)).lpNorm<Eigen::Infinity>(), system.evaluations()};
+}
+
+struct StudySettings {
+  SpringProblem problem;
+  std::vector<std::pair<std::string, int>> coarsest_steps;  // integrator, steps
+  int refinements = 4;
+};
+
+StudySettings read_settings(const io::Config& c) {
+  StudySettings s;
+  s.problem.point_mass = c.number("problem.point_mass", io::Range::positive());
+  s.problem.stiffness = c.number("problem.stiffness", io::Range::positive());
+  s.problem.rest_length = c.number("problem.rest_length", io::Range::positive());
+  s.problem.amplitude = c.number("problem.amplitude", io::Range::non_negative());
+  s.problem.end_time = c.number("problem.end_time", io::Range::positive());
+  s.refinements = static_cast<int>(c.integer("study.refinements", 1, 12));
+  for (const std::string& name : ode::integrator_names()) {
+    const std::string key = "study.coarsest_steps." + name;
+    if (c.has(key)) s.coarsest_steps.emplace_back(name, static_cast<int>(c.integer(key, 1, 10000000)));
+  }
+  return s;
+}
+
+void write_outputs(const io::OutputDir& out, const std::vector<ConvergenceStudy>& studies) {
+  io::CsvWriter runs({"integrator", "dt", "error", "function_evaluations"});
+  io::CsvWriter orders({"integrator", "expected_order", "measured_order"});
+  render::ChartSpec chart;
+  chart.title = "Global error at t = end_time (two-mass spring)";
+  chart.x_label = "time step dt";
+  chart.y_label = "max-norm state error";
+  chart.log_x = chart.log_y = true;
+  for (const ConvergenceStudy& s : studies) {
+    render::Series series;
+    series.label = s.integrator + " (order " + io::format_double(std::round(s.measured_order * 100) / 100) + ")";
+    series.markers = true;
+    for (const ConvergenceRun& r : s.runs) {
+      runs.row(s.integrator, {r.dt, r.error, static_cast<double>(r.function_evaluations)});
+      series.x.push_back(r.dt);
+      series.y.push_back(r.error);
+    }
+    orders.row(s.integrator, {static_cast<double>(s.expected_order), s.measured_order});
+    chart.series.push_back(std::move(series));
+  }
+  out.write_text("convergence.csv", runs.text());
+  out.write_text("orders.csv", orders.text());
+  const auto tmp = out.temporary_for("integrator_order.png");
+  render::write_chart_png(chart, tmp);
+  out.commit(tmp, "integrator_order.png");
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_integrator_order(const Context& ctx) {
+  const StudySettings settings = read_settings(ctx.config);
+  return [settings, ctx](const io::OutputDir& out) {
+    std::vector<ConvergenceStudy> studies;
+    nlohmann::ordered_json figures, measured;
+    for (const auto& [name, steps] : settings.coarsest_steps) {
+      studies.push_back(measure_convergence(name, settings.problem, steps, settings.refinements));
+      measured[name] = studies.back().measured_order;
+    }
+    figures["omega"] = settings.problem.omega();
+    figures["measured_orders"] = measured;
+    write_outputs(out, studies);
+    write_summary(out, "integrator-order", ctx.config, figures, "");
+    return Outcome{};
+  };
+}
+
+}  // namespace
+
+double SpringProblem::omega() const { return std::sqrt(2.0 * stiffness / point_mass); }
+
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx; sy += ly; sxx += lx * lx; sxy += lx * ly;
+  }
+  const double dn = static_cast<double>(n);
+  return (dn * sxy - sx * sy) / (dn * sxx - sx * sx);
+}
+
+ConvergenceStudy measure_convergence(const std::string& integrator_name, const SpringProblem& problem,
+                                     int coarsest_steps, int refinements) {
+  auto integrator = ode::make_integrator(integrator_name);
+  ConvergenceStudy study{integrator_name, integrator->order(), {}, 0.0};
+  std::vector<double> dts, errors;
+  for (int r = 0; r <= refinements; ++r) {
+    study.runs.push_back(run_fixed_steps(*integrator, problem, coarsest_steps << r));
+    dts.push_back(study.runs.back().dt);
+    errors.push_back(study.runs.back().error);
+  }
+  study.measured_order = log_log_slope(dts, errors);
+  return study;
+}
+
+Experiment integrator_order_experiment() {
+  return {"integrator-order", "Measured global order of convergence of every integrator (§2.4)",
+          "experiments/integrator-order.toml", prepare_integrator_order};
+}
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,62 @@
+#include "fluid/fluid_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "fluid/eulerian_solver.hpp"
+#include "fluid/semi_lagrangian_solver.hpp"
+
+namespace jellysim::fluid {
+
+FluidSolver::FluidSolver(const MacGrid& grid, const FluidSettings& settings)
+    : settings_(settings),
+      state_(grid),
+      body_acceleration_(grid),
+      projector_(make_pressure_solver(settings.pressure_solver, settings.pressure)) {
+  settings_.boundaries.validate();
+  if (!(settings_.viscosity_m2_per_s >= 0.0)) throw std::invalid_argument("viscosity must be >= 0");
+  if (!(settings_.density_kg_per_m3 > 0.0)) throw std::invalid_argument("density must be > 0");
+  if (!(settings_.safety_factor > 0.0 && settings_.safety_factor <= 1.0))
+    throw std::invalid_argument("safety factor must lie in (0, 1]");
+  apply_boundaries();
+}
+
+void FluidSolver::add_body_accelerations(Velocity& vel, double dt_s) const {
+  const MacGrid& g = state_.grid;
+  const Vec2 gravity = settings_.gravity_m_per_s2;
+  const FaceRange ru = interior_u_faces(g, settings_.boundaries);
+  for (int j = ru.j_begin; j < ru.j_end; ++j)
+    for (int i = ru.i_begin; i < ru.i_end; ++i) vel.u(i, j) += dt_s * (gravity.x + body_acceleration_.u(i, j));
+  const FaceRange rv = interior_v_faces(g, settings_.boundaries);
+  for (int j = rv.j_begin; j < rv.j_end; ++j)
+    for (int i = rv.i_begin; i < rv.i_end; ++i) vel.v(i, j) += dt_s * (gravity.y + body_acceleration_.v(i, j));
+}
+
+PressureSolveReport FluidSolver::project(double dt_s) {
+  return projector_.project(state_, settings_.boundaries, dt_s, settings_.density_kg_per_m3);
+}
+
+std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacGrid& grid,
+                                               const FluidSettings& settings) {
+  if (name == "eulerian") return std::make_unique<EulerianSolver>(grid, settings);
+  if (name == "semi-lagrangian") return std::make_unique<SemiLagrangianSolver>(grid, settings);
+  throw std::invalid_argument("unknown fluid solver '" + std::string(name) +
+                              "' (expected eulerian or semi-lagrangian)");
+}
+
+double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor) {
+  const MacGrid& g = vel.u.grid();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double u_max = vel.u.max_abs_interior();
+  const double v_max = vel.v.max_abs_interior();
+  if (!std::isfinite(u_max) || !std::isfinite(v_max)) return 0.0;
+  const double convective = std::min(u_max > 0.0 ? g.dx() / u_max : inf, v_max > 0.0 ? g.dy() / v_max : inf);  // eq. 4.8
+  const double viscous = viscosity_m2_per_s > 0.0
+                             ? 0.5 / viscosity_m2_per_s / (1.0 / (g.dx() * g.dx()) + 1.0 / (g.dy() * g.dy()))
+                             : inf;  // eq. 4.9
+  return safety_factor * std::min(convective, viscous);
+}
+
+}  // namespace jellysim::fluid

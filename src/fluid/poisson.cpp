@@ -1,0 +1,162 @@
+#include "fluid/poisson.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "fluid/multigrid.hpp"
+#include "fluid/sor.hpp"
+
+namespace jellysim::fluid {
+namespace {
+
+// Eq. 4.10 generalised: weight 1/h² for a neighbour, 0 on a Neumann side; a Dirichlet side
+// contributes 2/h² to the diagonal (ghost = −p puts p = 0 on the side).
+StencilAxis make_axis(int n, double h, PressureBoundary lower_side, PressureBoundary upper_side) {
+  StencilAxis a;
+  const double w = 1.0 / (h * h);
+  a.lower.resize(n);
+  a.upper.resize(n);
+  a.lower_weight.resize(n);
+  a.upper_weight.resize(n);
+  a.diagonal.resize(n);
+  for (int k = 0; k < n; ++k) {
+    double diag = 0.0;
+    auto neighbour = [&](int other, bool inside, PressureBoundary side, int& index, double& weight) {
+      if (inside || side == PressureBoundary::periodic) {
+        index = inside ? other : (other + n) % n;
+        weight = w;
+        diag += w;
+      } else {
+        index = k;
+        weight = 0.0;
+        if (side == PressureBoundary::dirichlet) diag += 2.0 * w;
+      }
+    };
+    neighbour(k - 1, k > 0, lower_side, a.lower[k], a.lower_weight[k]);
+    neighbour(k + 1, k < n - 1, upper_side, a.upper[k], a.upper_weight[k]);
+    a.diagonal[k] = diag;
+  }
+  return a;
+}
+
+}  // namespace
+
+PoissonOperator::PoissonOperator(int nx, int ny, double dx, double dy,
+                                 std::array<PressureBoundary, 4> sides)
+    : nx_(nx), ny_(ny), dx_(dx), dy_(dy), sides_(sides),
+      x_(make_axis(nx, dx, sides[0], sides[1])),
+      y_(make_axis(ny, dy, sides[2], sides[3])) {
+  if ((sides[0] == PressureBoundary::periodic) != (sides[1] == PressureBoundary::periodic) ||
+      (sides[2] == PressureBoundary::periodic) != (sides[3] == PressureBoundary::periodic))
+    throw std::invalid_argument("PoissonOperator: periodic sides must come in opposite pairs");
+}
+
+bool PoissonOperator::singular() const {
+  return std::none_of(sides_.begin(), sides_.end(),
+                      [](PressureBoundary s) { return s == PressureBoundary::dirichlet; });
+}
+
+bool PoissonOperator::same_problem(const PoissonOperator& o) const {
+  return nx_ == o.nx_ && ny_ == o.ny_ && dx_ == o.dx_ && dy_ == o.dy_ && sides_ == o.sides_;
+}
+
+double PoissonOperator::neighbour_sum(std::span<const double> p, int i, int j) const {
+  const std::size_t row = static_cast<std::size_t>(j) * nx_;
+  return x_.lower_weight[i] * p[row + x_.lower[i]] + x_.upper_weight[i] * p[row + x_.upper[i]] +
+         y_.lower_weight[j] * p[static_cast<std::size_t>(y_.lower[j]) * nx_ + i] +
+         y_.upper_weight[j] * p[static_cast<std::size_t>(y_.upper[j]) * nx_ + i];
+}
+
+void PoissonOperator::apply(std::span<const double> p, std::span<double> out) const {
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+      out[k] = neighbour_sum(p, i, j) - diagonal(i, j) * p[k];
+    }
+}
+
+double PoissonOperator::residual(std::span<const double> p, std::span<const double> b,
+                                 std::span<double> r) const {
+  double m = 0.0;
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+      r[k] = b[k] - (neighbour_sum(p, i, j) - diagonal(i, j) * p[k]);
+      m = std::max(m, std::abs(r[k]));
+    }
+  return m;
+}
+
+double PoissonOperator::residual_max(std::span<const double> p, std::span<const double> b) const {
+  double m = 0.0;
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+      m = std::max(m, std::abs(b[k] - (neighbour_sum(p, i, j) - diagonal(i, j) * p[k])));
+    }
+  return m;
+}
+
+PoissonOperator PoissonOperator::coarsened() const {
+  if (nx_ % 2 != 0 || ny_ % 2 != 0)
+    throw std::logic_error("PoissonOperator::coarsened needs even cell counts");
+  return PoissonOperator(nx_ / 2, ny_ / 2, 2.0 * dx_, 2.0 * dy_, sides_);
+}
+
+void remove_mean(std::span<double> values) {
+  if (values.empty()) return;
+  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  for (double& v : values) v -= mean;
+}
+
+double max_abs(std::span<const double> values) {
+  double m = 0.0;
+  for (double v : values) m = std::max(m, std::abs(v));
+  return m;
+}
+
+std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
+                                                     const PressureSolverSettings& settings) {
+  if (name == "sor") return std::make_unique<SorSolver>(settings);
+  if (name == "multigrid") return std::make_unique<MultigridSolver>(settings);
+  throw std::invalid_argument("unknown pressure solver '" + std::string(name) +
+                              "' (expected sor or multigrid)");
+}
+
+int conjugate_gradient_poisson(const PoissonOperator& op, std::span<const double> b,
+                               std::span<double> p, double relative_tolerance, int max_iterations) {
+  // Solves A p = c with A = −∇² (SPD, or semi-definite with the constants as null space) and
+  // c = −b. Residual r = c − A p = −(b − ∇²p).
+  const std::size_t n = p.size();
+  std::vector<double> r(n), d(n), q(n);
+  op.residual(p, b, r);
+  for (double& x : r) x = -x;
+  if (op.singular()) remove_mean(r);
+  const double b_norm = std::max(max_abs(b), 1e-300);
+  d = r;
+  double rr = std::inner_product(r.begin(), r.end(), r.begin(), 0.0);
+  int it = 0;
+  for (; it < max_iterations && max_abs(r) > relative_tolerance * b_norm; ++it) {
+    op.apply(d, q);
+    for (double& x : q) x = -x;  // q = A d
+    const double dq = std::inner_product(d.begin(), d.end(), q.begin(), 0.0);
+    if (!(dq > 0.0)) break;
+    const double alpha = rr / dq;
+    for (std::size_t k = 0; k < n; ++k) {
+      p[k] += alpha * d[k];
+      r[k] -= alpha * q[k];
+    }
+    if (op.singular()) remove_mean(r);
+    const double rr_new = std::inner_product(r.begin(), r.end(), r.begin(), 0.0);
+    const double beta = rr_new / rr;
+    rr = rr_new;
+    for (std::size_t k = 0; k < n; ++k) d[k] = r[k] + beta * d[k];
+  }
+  if (op.singular()) remove_mean(p);
+  return it;
+}
+
+}  // namespace jellysim::fluid

@@ -1,0 +1,30 @@
+#pragma once
+// Building blocks of Stam's semi-Lagrangian method (§4.2): back-traced advection and implicit
+// diffusion on the staggered grid.
+#include "fluid/boundary.hpp"
+#include "fluid/grid.hpp"
+
+namespace jellysim::fluid {
+
+/// Keeps a position inside the domain: wraps along periodic axes, clamps onto the sides
+/// otherwise (Fedkiw et al.'s clamp of back-traced points, §4.2.2).
+Vec2 confine_to_domain(const MacGrid& g, const Boundaries& b, Vec2 p);
+
+/// Velocity at the x-face (i, j): u itself and v averaged from the four surrounding y-faces.
+Vec2 velocity_at_u_face(const Velocity& vel, int i, int j);
+Vec2 velocity_at_v_face(const Velocity& vel, int i, int j);
+
+/// Second-order (midpoint) back-trace: x − Δt·u(x − ½Δt·u(x)), confined to the domain.
+Vec2 back_trace(const Velocity& vel, const Boundaries& b, Vec2 x, Vec2 velocity_at_x, double dt_s);
+
+/// Semi-Lagrangian advection of the velocity by itself (§4.2.4 step 3, with the sign of the
+/// back-trace corrected: u_c(x) = u_b(x − Δt u_b)). `src` must have filled ghosts; the interior
+/// faces of `dst` are overwritten and its boundaries applied.
+void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
+
+/// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate
+/// gradients on the interior faces with the boundary values of `b`. Returns the CG iterations.
+int diffuse_velocity_implicit(Velocity& vel, const Boundaries& b, double nu_dt_m2,
+                              double relative_tolerance, int max_iterations = 2000);
+
+}  // namespace jellysim::fluid

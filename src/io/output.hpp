@@ -1,0 +1,58 @@
+#pragma once
+// Results directory: every file is written atomically (temporary name, then rename), so a reader
+// never sees a half-written file and a failed run leaves no corrupt output behind.
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace jellysim::io {
+
+class OutputDir {
+ public:
+  /// Creates the directory (and parents) if needed; throws RunError when that fails.
+  explicit OutputDir(std::filesystem::path dir);
+
+  const std::filesystem::path& path() const { return dir_; }
+  std::filesystem::path file(std::string_view name) const { return dir_ / name; }
+
+  /// Writes `content` to `name` atomically.
+  void write_text(std::string_view name, std::string_view content) const;
+  /// Writes a JSON document (2-space indented, trailing newline) atomically.
+  void write_json(std::string_view name, const nlohmann::ordered_json& json) const;
+
+  /// For writers that need a path (e.g. image libraries): returns a temporary path next to `name`;
+  /// call commit() to move it into place. A temporary that is not committed is removed by
+  /// discard() or left with a ".tmp-" name that no reader takes for a result.
+  std::filesystem::path temporary_for(std::string_view name) const;
+  void commit(const std::filesystem::path& temporary, std::string_view name) const;
+
+ private:
+  std::filesystem::path dir_;
+};
+
+/// Builds a CSV file row by row with a fixed header; numbers use the shortest text that reads back
+/// to the same double (std::to_chars), so files are byte-identical across runs.
+class CsvWriter {
+ public:
+  explicit CsvWriter(const std::vector<std::string>& columns);
+  /// Appends one row of numbers; the count must equal the column count.
+  void row(std::initializer_list<double> values);
+  /// Appends one row whose first cell is text (e.g. an integrator name) followed by numbers.
+  void row(std::string_view label, std::initializer_list<double> values);
+  const std::string& text() const { return text_; }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  void append_number(double v);
+  std::size_t columns_;
+  std::size_t rows_ = 0;
+  std::string text_;
+};
+
+/// Shortest round-trip text for a double ("nan"/"inf" for non-finite values).
+std::string format_double(double v);
+
+}  // namespace jellysim::io

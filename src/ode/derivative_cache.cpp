@@ -1,0 +1,25 @@
+#include "ode/derivative_cache.hpp"
+
+namespace jellysim::ode {
+
+bool DerivativeCache::lookup(const OdeSystem& system, double t, const Vector& y, Vector& f) const {
+  const bool hit = system_ == &system && t_ == t && y_.size() == y.size() && (y_.array() == y.array()).all();
+  if (hit) f = f_;
+  return hit;
+}
+
+void DerivativeCache::store(const OdeSystem& system, double t, const Vector& y, const Vector& f) {
+  system_ = &system;
+  t_ = t;
+  y_ = y;
+  f_ = f;
+}
+
+void DerivativeCache::evaluate(const OdeSystem& system, double t, const Vector& y, Vector& f) {
+  if (lookup(system, t, y, f)) return;
+  f.resize(system.dimension());
+  system.derivative(t, y, f);
+  store(system, t, y, f);
+}
+
+}  // namespace jellysim::ode
