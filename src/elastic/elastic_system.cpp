@@ -121,7 +121,8 @@ void add_angular_springs(const Body& body, const std::vector<Vec2>& x, JacobianA
 void add_drag(const Body& body, JacobianAssembler& jac) {
   if (body.drag_coefficient == 0.0) return;
   const Mat2 d = -body.drag_coefficient * Mat2::identity();
-  for (std::size_t p = 0; p < body.points.size(); ++p) jac.add_velocity_block(static_cast<int>(p), static_cast<int>(p), d);
+  const auto n = static_cast<int>(body.points.size());
+  for (int p = 0; p < n; ++p) jac.add_velocity_block(p, p, d);
 }
 
 /// Adds the triplets into jac's existing sparsity pattern without allocating; false (jac left

@@ -63,7 +63,9 @@ inline Body make_test_body(Random& rng) {
   for (int p = 0; p + 1 < 6; ++p) body.add_linear_spring(p, p + 1, rng.uniform(1, 20), rng.uniform(0.3, 0.7));
   for (int p = 0; p + 2 < 6; ++p) body.add_linear_spring(p, p + 2, rng.uniform(1, 20), rng.uniform(0.8, 1.2));
   body.add_linear_spring(2, pinned, 7.0, 0.5);
-  for (int p = 0; p + 2 < 6; ++p) body.add_angular_spring(p, p + 1, p + 2, rng.uniform(0.5, 3), rng.uniform(-0.5, 0.5));
+  for (int p = 0; p + 2 < 6; ++p) {
+    body.add_angular_spring(p, p + 1, p + 2, rng.uniform(0.5, 3), rng.uniform(-0.5, 0.5));
+  }
   return body;
 }
 
