@@ -1,11 +1,11 @@
 // Adaptive step-size control (thesis §2.4.6): embedded pair where the method has one, step doubling
 // otherwise; the standard controller of Hairer, Nørsett & Wanner, Solving ODEs I, §II.4.
-#include "ode/integrator.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
+
+#include "ode/integrator.hpp"
 
 namespace jellysim::ode {
 
@@ -77,8 +77,8 @@ double AdaptiveStepper::attempt_step_doubling(const OdeSystem& system, double t,
 
 double AdaptiveStepper::step_factor(double err) const {
   if (!std::isfinite(err)) return settings_.min_factor;
-  const int q = uses_step_doubling() ? integrator_.order()
-                                     : std::min(integrator_.order(), integrator_.embedded_order());
+  const int q =
+      uses_step_doubling() ? integrator_.order() : std::min(integrator_.order(), integrator_.embedded_order());
   const double optimal = settings_.safety * std::pow(err, -1.0 / (q + 1));  // +inf when err == 0
   return std::clamp(optimal, settings_.min_factor, settings_.max_factor);
 }

@@ -15,25 +15,30 @@ StepOutcome BackwardEuler::step(const OdeSystem& system, double t, double dt, co
   if (!system.has_jacobian()) throw std::invalid_argument("backward-euler needs a system with an analytic Jacobian");
   start_.evaluate(system, t, y, f_);
   y_out = y + dt * f_;  // explicit Euler predictor (eq. 2.22)
-  const double t1 = t + dt;
   for (int iteration = 0; iteration < settings_.max_iterations; ++iteration) {
-    system.derivative(t1, y_out, f_);
-    residual_ = y_out - y - dt * f_;  // G(y1), eq. 2.35 with g(y1) = y + dt f(t1, y1)
-    if (converged(residual_, y, y_out)) {
-      last_iterations_ = iteration;
-      return {};
-    }
-    const bool refresh = iteration == 0 || !settings_.simplified;
-    if (refresh && !factorize(system, t1, dt, y_out)) return {.ok = false};
-    delta_ = solver_.solve(-residual_);  // eq. 2.36: (I - dt J) Δ = -G
-    y_out += delta_;
-    if (!delta_.allFinite()) return {.ok = false};
-    if (converged(delta_, y, y_out)) {
-      last_iterations_ = iteration + 1;
-      return {};
-    }
+    const Newton state = newton_iteration(system, t + dt, dt, y, y_out, iteration);
+    if (state != Newton::iterate) return {.ok = state == Newton::converged};
   }
   return {.ok = false};
+}
+
+BackwardEuler::Newton BackwardEuler::newton_iteration(const OdeSystem& system, double t1, double dt, const Vector& y,
+                                                      Vector& y1, int iteration) {
+  system.derivative(t1, y1, f_);
+  residual_ = y1 - y - dt * f_;  // G(y1), eq. 2.35 with g(y1) = y + dt f(t1, y1)
+  // Always correct the predictor once: accepting an unstable explicit Euler step whenever it lies
+  // within tolerance would let a stiff decay stall at the atol level.
+  if (iteration > 0 && converged(residual_, y, y1)) {
+    last_iterations_ = iteration;
+    return Newton::converged;
+  }
+  const bool refresh = iteration == 0 || !settings_.simplified;
+  if (refresh && !factorize(system, t1, dt, y1)) return Newton::failed;
+  delta_ = solver_.solve(-residual_);  // eq. 2.36: (I - dt J) Δ = -G
+  y1 += delta_;
+  if (!delta_.allFinite()) return Newton::failed;
+  last_iterations_ = iteration + 1;
+  return converged(delta_, y, y1) ? Newton::converged : Newton::iterate;
 }
 
 bool BackwardEuler::converged(const Vector& v, const Vector& y, const Vector& y1) const {
@@ -44,7 +49,8 @@ bool BackwardEuler::factorize(const OdeSystem& system, double t1, double dt, con
   const Eigen::Index n = y1.size();
   system.jacobian(t1, y1, jacobian_);
   if (jacobian_.rows() != n || jacobian_.cols() != n) {
-    throw std::invalid_argument("backward-euler: the Jacobian must be " + std::to_string(n) + " x " + std::to_string(n));
+    throw std::invalid_argument("backward-euler: the Jacobian must be " + std::to_string(n) + " x " +
+                                std::to_string(n));
   }
   if (identity_.rows() != n) {
     identity_.resize(n, n);

@@ -1,11 +1,11 @@
 #pragma once
 // Backward Euler (thesis eq. 2.33) solved by Newton's method (eq. 2.36) with the system's analytic
 // sparse Jacobian and a sparse LU factorisation of the iteration matrix I - dt J.
-#include "ode/derivative_cache.hpp"
-#include "ode/integrator.hpp"
-
 #include <Eigen/SparseLU>
 #include <vector>
+
+#include "ode/derivative_cache.hpp"
+#include "ode/integrator.hpp"
 
 namespace jellysim::ode {
 
@@ -24,19 +24,23 @@ class BackwardEuler final : public Integrator {
 
   std::string_view name() const override { return "backward-euler"; }
   int order() const override { return 1; }
-  /// Solves G(y1) = y1 - y - dt f(t + dt, y1) = 0 from the explicit Euler predictor. Returns
+  /// Solves G(y1) = y1 - y - dt f(t + dt, y1) = 0 from the explicit Euler predictor, applying at
+  /// least one Newton correction. Returns
   /// ok = false when Newton does not converge within max_iterations or I - dt J is singular.
   /// Throws std::invalid_argument when !system.has_jacobian().
   StepOutcome step(const OdeSystem& system, double t, double dt, const Vector& y, Vector& y_out,
                    Vector* error) override;
   void reset() override { start_.clear(); }
 
-  /// Newton corrections applied in the last successful step.
+  /// Newton corrections applied in the last successful step (at least one).
   int last_iterations() const { return last_iterations_; }
   /// Symbolic analyses of I - dt J so far (one per distinct sparsity pattern met in a row).
   int pattern_analyses() const { return pattern_analyses_; }
 
  private:
+  enum class Newton { iterate, converged, failed };
+  /// One Newton iteration on G(y1) = 0, updating y1 in place.
+  Newton newton_iteration(const OdeSystem& system, double t1, double dt, const Vector& y, Vector& y1, int iteration);
   bool converged(const Vector& v, const Vector& y, const Vector& y1) const;
   /// Evaluates J at (t1, y1) and factorises I - dt J; false when the factorisation fails.
   bool factorize(const OdeSystem& system, double t1, double dt, const Vector& y1);

@@ -12,13 +12,17 @@ ButcherTableau forward_euler_tableau() {
 
 ButcherTableau predictor_corrector_tableau() {
   // Predictor (eq. 2.26) is the second stage's argument; the step uses only the corrector slope.
-  return {.name = "predictor-corrector", .c = {0.0, 1.0}, .a = {{}, {1.0}}, .b = {0.0, 1.0}, .b_hat = {},
-          .order = 1};
+  return {.name = "predictor-corrector", .c = {0.0, 1.0}, .a = {{}, {1.0}}, .b = {0.0, 1.0}, .b_hat = {}, .order = 1};
 }
 
 ButcherTableau rk2_tableau() {
-  return {.name = "rk2", .c = {0.0, 1.0}, .a = {{}, {1.0}}, .b = {0.5, 0.5}, .b_hat = {1.0, 0.0},
-          .order = 2, .embedded_order = 1};
+  return {.name = "rk2",
+          .c = {0.0, 1.0},
+          .a = {{}, {1.0}},
+          .b = {0.5, 0.5},
+          .b_hat = {1.0, 0.0},
+          .order = 2,
+          .embedded_order = 1};
 }
 
 ButcherTableau rk4_tableau() {
@@ -71,7 +75,8 @@ void validate_shape(const ButcherTableau& tableau) {
 }
 
 void validate_consistency(const ButcherTableau& tableau) {
-  for (std::size_t i = 0; i < tableau.stages(); ++i) require(sums_to(tableau.a[i], tableau.c[i]), tableau, "c_i != sum_j a_ij");
+  for (std::size_t i = 0; i < tableau.stages(); ++i)
+    require(sums_to(tableau.a[i], tableau.c[i]), tableau, "c_i != sum_j a_ij");
   require(sums_to(tableau.b, 1.0), tableau, "weights b do not sum to 1");
   require(tableau.b_hat.empty() || sums_to(tableau.b_hat, 1.0), tableau, "weights b_hat do not sum to 1");
 }

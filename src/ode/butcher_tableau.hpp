@@ -16,7 +16,7 @@ struct ButcherTableau {
   std::vector<double> b;               ///< weights of the propagated solution
   std::vector<double> b_hat;           ///< weights of the embedded solution; empty without a pair
   int order = 0;
-  int embedded_order = 0;              ///< 0 without an embedded pair
+  int embedded_order = 0;  ///< 0 without an embedded pair
   /// First same as last: the last stage is f(t + dt, y_out), reusable as the next step's first.
   bool fsal = false;
 

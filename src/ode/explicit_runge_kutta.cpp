@@ -16,17 +16,19 @@ StepOutcome ExplicitRungeKutta::step(const OdeSystem& system, double t, double d
   const std::size_t stages = tableau_.stages();
   const std::size_t computed_here = tableau_.fsal ? stages - 1 : stages;
   for (std::size_t i = 1; i < computed_here; ++i) {
-    combine(y, dt, tableau_.a[i], stage_y_);
+    stage_y_ = y;
+    add_stages(dt, tableau_.a[i], stage_y_);
     system.derivative(t + tableau_.c[i] * dt, stage_y_, k_[i]);
   }
-  combine(y, dt, tableau_.b, y_out);
+  y_out = y;
+  add_stages(dt, tableau_.b, y_out);
   if (tableau_.fsal) {  // last row of A equals b, so the last stage is evaluated at y_out itself
     system.derivative(t + dt, y_out, k_[stages - 1]);
     end_.store(system, t + dt, y_out, k_[stages - 1]);
   }
   if (error == nullptr || !has_embedded_pair()) return {};
   error->setZero(y.size());
-  combine(*error, dt, error_weights_, *error);
+  add_stages(dt, error_weights_, *error);
   return {.ok = true, .has_error = true};
 }
 
@@ -37,12 +39,14 @@ void ExplicitRungeKutta::reset() {
 
 void ExplicitRungeKutta::first_stage(const OdeSystem& system, double t, const Vector& y) {
   for (Vector& k : k_) k.resize(y.size());
-  if (!end_.lookup(system, t, y, k_[0])) start_.evaluate(system, t, y, k_[0]);
+  if (end_.lookup(system, t, y, k_[0])) {
+    start_.store(system, t, y, k_[0]);  // a rejected attempt is retried from here
+  } else {
+    start_.evaluate(system, t, y, k_[0]);
+  }
 }
 
-void ExplicitRungeKutta::combine(const Vector& base, double dt, const std::vector<double>& weights,
-                                 Vector& out) const {
-  out = base;
+void ExplicitRungeKutta::add_stages(double dt, const std::vector<double>& weights, Vector& out) const {
   for (std::size_t j = 0; j < weights.size(); ++j) {
     if (weights[j] != 0.0) out += (dt * weights[j]) * k_[j];
   }

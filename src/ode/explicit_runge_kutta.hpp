@@ -2,11 +2,11 @@
 // One generic explicit Runge–Kutta stepper driven by a Butcher tableau (thesis eqs. 2.37-2.40),
 // with the embedded error estimate y - y_hat when the tableau has one and FSAL reuse of the last
 // stage.
+#include <vector>
+
 #include "ode/butcher_tableau.hpp"
 #include "ode/derivative_cache.hpp"
 #include "ode/integrator.hpp"
-
-#include <vector>
 
 namespace jellysim::ode {
 
@@ -28,8 +28,8 @@ class ExplicitRungeKutta final : public Integrator {
 
  private:
   void first_stage(const OdeSystem& system, double t, const Vector& y);
-  /// out = base + dt Σ_j weights_j k_j, skipping zero weights (their stages may not exist yet).
-  void combine(const Vector& base, double dt, const std::vector<double>& weights, Vector& out) const;
+  /// out += dt Σ_j weights_j k_j, skipping zero weights (their stages may not be computed yet).
+  void add_stages(double dt, const std::vector<double>& weights, Vector& out) const;
 
   ButcherTableau tableau_;
   std::vector<double> error_weights_;  ///< b - b_hat: the error estimate is dt Σ (b_i - b_hat_i) k_i

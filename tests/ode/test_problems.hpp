@@ -1,11 +1,11 @@
 #pragma once
 // Small ODE systems with known solutions for the ode tests.
-#include "ode/ode_system.hpp"
-
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <vector>
+
+#include "ode/ode_system.hpp"
 
 namespace jellysim::ode::testing {
 

@@ -1,12 +1,19 @@
 #pragma once
 // Integration loops and a slope fit shared by the ode tests.
-#include "ode/integrator.hpp"
-
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "ode/integrator.hpp"
+
 namespace jellysim::ode::testing {
+
+/// A registry name as a GoogleTest parameter name ('-' is not allowed there).
+inline std::string gtest_name(std::string name) {
+  for (char& ch : name) ch = ch == '-' ? '_' : ch;
+  return name;
+}
 
 /// `steps` fixed steps from (t0, y) to t1; t advances by `t += dt` so FSAL caching applies.
 inline Vector integrate_fixed(Integrator& integrator, const OdeSystem& system, Vector y, double t0, double t1,
@@ -28,8 +35,8 @@ struct AdaptiveRun {
 };
 
 /// Adaptive integration from (t0, y) to exactly t1, starting with step dt0.
-inline AdaptiveRun integrate_adaptive(Integrator& integrator, const OdeSystem& system, Vector y, double t0,
-                                      double t1, const AdaptiveSettings& settings, double dt0) {
+inline AdaptiveRun integrate_adaptive(Integrator& integrator, const OdeSystem& system, Vector y, double t0, double t1,
+                                      const AdaptiveSettings& settings, double dt0) {
   AdaptiveStepper stepper(integrator, settings);
   double t = t0, dt = dt0, taken = 0.0;
   while (t < t1) {
