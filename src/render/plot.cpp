@@ -78,8 +78,12 @@ void draw_legend(plstream& pls, const ChartSpec& chart) {
     texts[i] = s.label.c_str();
     symbols[i] = "#(728)";
   }
+  const bool top = chart.legend == LegendCorner::TopRight || chart.legend == LegendCorner::TopLeft;
+  const bool right = chart.legend == LegendCorner::TopRight || chart.legend == LegendCorner::BottomRight;
+  const PLINT position = PL_POSITION_INSIDE | (top ? PL_POSITION_TOP : PL_POSITION_BOTTOM) |
+                         (right ? PL_POSITION_RIGHT : PL_POSITION_LEFT);
   PLFLT w = 0, h = 0;
-  pls.legend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, PL_POSITION_INSIDE | PL_POSITION_TOP | PL_POSITION_RIGHT,
+  pls.legend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, position,
              0.02, 0.02, 0.1, 0, 1, 1, 0, 0, n, opts.data(), 1.0, 0.8, 2.0, 1.0, text_colors.data(), texts.data(),
              nullptr, nullptr, nullptr, nullptr, line_colors.data(), line_styles.data(), line_widths.data(),
              symbol_colors.data(), symbol_scales.data(), symbol_numbers.data(), symbols.data());

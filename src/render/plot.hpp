@@ -18,10 +18,13 @@ struct Series {
   bool dashed = false;
 };
 
+enum class LegendCorner { TopRight, TopLeft, BottomRight, BottomLeft };
+
 struct ChartSpec {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;  ///< log axes (non-positive values are dropped)
   std::vector<Series> series;
+  LegendCorner legend = LegendCorner::TopRight;
   int width_px = 960, height_px = 680;
 };
 
