@@ -50,7 +50,8 @@ EulerianSolver::EulerianSolver(const MacGrid& grid, const FluidSettings& setting
     : FluidSolver(grid, settings), predictor_(grid) {}
 
 double EulerianSolver::stable_time_step() const {
-  return stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor);
+  return stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor,
+                             &settings_.boundaries);
 }
 
 double EulerianSolver::donor_cell_blend(double dt_s) const {

@@ -46,11 +46,18 @@ std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacG
                               "' (expected eulerian or semi-lagrangian)");
 }
 
-double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor) {
+double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor,
+                           const Boundaries* sides) {
   const MacGrid& g = vel.u.grid();
   const double inf = std::numeric_limits<double>::infinity();
-  const double u_max = vel.u.max_abs_interior();
-  const double v_max = vel.v.max_abs_interior();
+  double u_max = vel.u.max_abs_interior();
+  double v_max = vel.v.max_abs_interior();
+  if (sides)
+    for (const BoundaryCondition* c : {&sides->west, &sides->east, &sides->south, &sides->north}) {
+      if (c->type == BoundaryType::outflow || c->type == BoundaryType::periodic) continue;
+      u_max = std::max(u_max, std::abs(c->velocity_m_per_s.x));
+      v_max = std::max(v_max, std::abs(c->velocity_m_per_s.y));
+    }
   if (!std::isfinite(u_max) || !std::isfinite(v_max)) return 0.0;
   const double convective = std::min(u_max > 0.0 ? g.dx() / u_max : inf, v_max > 0.0 ? g.dy() / v_max : inf);  // eq. 4.8
   const double viscous = viscosity_m2_per_s > 0.0

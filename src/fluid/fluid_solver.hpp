@@ -37,7 +37,7 @@ struct FluidSettings {
 
   // Semi-Lagrangian method.
   bool project_before_advection = false;  ///< the extra projection of §4.2.4
-  double diffusion_tolerance = 1e-10;     ///< relative max-norm residual of eq. 4.17's CG solve
+  double diffusion_tolerance = 1e-8;      ///< relative max-norm residual of eq. 4.17's CG solve
 };
 
 struct StepReport {
@@ -87,7 +87,9 @@ class FluidSolver {
 std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacGrid& grid,
                                                const FluidSettings& settings);
 
-/// Eqs. 4.8 and 4.9: τ · min(Δx/max|u|, Δy/max|v|, 1/(2ν) (1/Δx² + 1/Δy²)⁻¹).
-double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor);
+/// Eqs. 4.8 and 4.9: τ · min(Δx/max|u|, Δy/max|v|, 1/(2ν) (1/Δx² + 1/Δy²)⁻¹). The maxima run
+/// over the faces and, when given, the prescribed side velocities (a moving lid).
+double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor,
+                           const Boundaries* sides = nullptr);
 
 }  // namespace jellysim::fluid

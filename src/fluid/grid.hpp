@@ -2,6 +2,8 @@
 // Staggered (MAC) grid of thesis Figure 4.1: pressure at cell centres, the x-velocity on the
 // vertical faces, the y-velocity on the horizontal faces. Every field carries one ghost layer
 // around its interior samples; the boundary conditions (boundary.hpp) fill the ghosts.
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -33,7 +35,9 @@ struct MacGrid {
     return {(p.x - origin_m.x) / dx(), (p.y - origin_m.y) / dy()};
   }
   /// Clamp a world position into the closed domain rectangle.
-  Vec2 clamp_to_domain(Vec2 p) const;
+  Vec2 clamp_to_domain(Vec2 p) const {
+    return {std::clamp(p.x, origin_m.x, origin_m.x + width_m), std::clamp(p.y, origin_m.y, origin_m.y + height_m)};
+  }
 };
 
 /// Where a field's samples sit inside a cell, as a fraction of the cell size.
@@ -64,6 +68,9 @@ class Field {
     return static_cast<std::size_t>(j + 1) * stride_ + static_cast<std::size_t>(i + 1);
   }
   std::size_t stride() const { return stride_; }
+  /// Pointer to sample (i, j); consecutive i are contiguous.
+  double* ptr(int i, int j) { return data_.data() + index(i, j); }
+  const double* ptr(int i, int j) const { return data_.data() + index(i, j); }
   std::span<double> raw() { return data_; }
   std::span<const double> raw() const { return data_; }
 
@@ -73,9 +80,21 @@ class Field {
   }
   /// Bilinear interpolation at a world position; outside the stored samples (ghosts included)
   /// the position is clamped onto them.
-  double sample(Vec2 p) const;
+  double sample(Vec2 p) const {
+    // Continuous sample index, clamped to the stored range [-1, count] (ghosts included).
+    const double fx = std::clamp((p.x - origin_x_) * inv_dx_, -1.0, static_cast<double>(count_x_));
+    const double fy = std::clamp((p.y - origin_y_) * inv_dy_, -1.0, static_cast<double>(count_y_));
+    const int i0 = std::min(static_cast<int>(fx + 1.0) - 1, count_x_ - 1);  // floor, as fx ≥ −1
+    const int j0 = std::min(static_cast<int>(fy + 1.0) - 1, count_y_ - 1);
+    const double tx = fx - i0;
+    const double ty = fy - j0;
+    const double* q = data_.data() + index(i0, j0);
+    const double bottom = (1.0 - tx) * q[0] + tx * q[1];
+    const double top = (1.0 - tx) * q[stride_] + tx * q[stride_ + 1];
+    return (1.0 - ty) * bottom + ty * top;
+  }
   void fill(double value);
-  /// Largest |value| over the interior samples.
+  /// Largest |value| over the interior samples (NaN if any sample is NaN).
   double max_abs_interior() const;
 
  private:
@@ -85,6 +104,8 @@ class Field {
   int count_y_ = 0;
   std::size_t stride_ = 0;
   std::vector<double> data_;
+  // World position of sample (0, 0) and inverse spacings, cached for sample().
+  double origin_x_ = 0.0, origin_y_ = 0.0, inv_dx_ = 1.0, inv_dy_ = 1.0;
 };
 
 /// Number of interior samples along x for a staggering: faces and nodes have one more than cells.

@@ -45,16 +45,27 @@ void restrict_full_weighting(std::span<const double> fine, int fine_nx, std::spa
     }
 }
 
+// Bilinear cell-centred prolongation, first along y into a padded row (with the ghost values of
+// the sides at both ends), then along x: fine 2I takes ¾ of coarse I and ¼ of I−1, 2I+1 ¼ of I+1.
 void prolong_and_add(std::span<const double> coarse, int coarse_nx, const ProlongationAxis& px,
-                     const ProlongationAxis& py, std::span<double> fine, int fine_nx, int fine_ny) {
+                     const ProlongationAxis& py, std::span<double> fine, int fine_nx, int fine_ny,
+                     std::vector<double>& row) {
+  row.resize(static_cast<std::size_t>(coarse_nx) + 2);
+  double* t = row.data() + 1;
+  const double lower_sign = px.far[0] == px.near[0] ? (px.far_weight[0] < 0.0 ? -1.0 : 1.0) : 0.0;
+  const double upper_sign =
+      px.far[fine_nx - 1] == px.near[fine_nx - 1] ? (px.far_weight[fine_nx - 1] < 0.0 ? -1.0 : 1.0) : 0.0;
   for (int j = 0; j < fine_ny; ++j) {
-    const std::size_t near_row = static_cast<std::size_t>(py.near[j]) * coarse_nx;
-    const std::size_t far_row = static_cast<std::size_t>(py.far[j]) * coarse_nx;
+    const double* near_row = coarse.data() + static_cast<std::size_t>(py.near[j]) * coarse_nx;
+    const double* far_row = coarse.data() + static_cast<std::size_t>(py.far[j]) * coarse_nx;
     const double wy_far = py.far_weight[j];
-    for (int i = 0; i < fine_nx; ++i) {
-      const double near_x = 0.75 * coarse[near_row + px.near[i]] + px.far_weight[i] * coarse[near_row + px.far[i]];
-      const double far_x = 0.75 * coarse[far_row + px.near[i]] + px.far_weight[i] * coarse[far_row + px.far[i]];
-      fine[static_cast<std::size_t>(j) * fine_nx + i] += 0.75 * near_x + wy_far * far_x;
+    for (int I = 0; I < coarse_nx; ++I) t[I] = 0.75 * near_row[I] + wy_far * far_row[I];
+    t[-1] = lower_sign != 0.0 ? lower_sign * t[0] : t[coarse_nx - 1];             // periodic: wrap
+    t[coarse_nx] = upper_sign != 0.0 ? upper_sign * t[coarse_nx - 1] : t[0];
+    double* f = fine.data() + static_cast<std::size_t>(j) * fine_nx;
+    for (int I = 0; I < coarse_nx; ++I) {
+      f[2 * I] += 0.75 * t[I] + 0.25 * t[I - 1];
+      f[2 * I + 1] += 0.75 * t[I] + 0.25 * t[I + 1];
     }
   }
 }
@@ -129,7 +140,7 @@ void MultigridSolver::v_cycle(std::size_t l) {
   if (coarse.op.singular()) remove_mean(coarse.b);
   std::fill(coarse.p.begin(), coarse.p.end(), 0.0);
   v_cycle(l + 1);
-  prolong_and_add(coarse.p, coarse.op.nx(), level.px, level.py, level.p, level.op.nx(), level.op.ny());
+  prolong_and_add(coarse.p, coarse.op.nx(), level.px, level.py, level.p, level.op.nx(), level.op.ny(), row_);
   smooth_red_black(level.op, level.b, level.p, smoothing);
 }
 

@@ -38,6 +38,7 @@ class MultigridSolver final : public PressureSolver {
 
   PressureSolverSettings settings_;
   std::vector<Level> levels_;
+  std::vector<double> row_;  // prolongation scratch
 };
 
 /// Red-black Gauss–Seidel sweeps on ∇²p = b.

@@ -41,8 +41,8 @@ class PoissonOperator {
 
   /// out = ∇²p.
   void apply(std::span<const double> p, std::span<double> out) const;
-  /// r = b − ∇²p; returns max |r|.
-  double residual(std::span<const double> p, std::span<const double> b, std::span<double> r) const;
+  /// r = b − ∇²p.
+  void residual(std::span<const double> p, std::span<const double> b, std::span<double> r) const;
   double residual_max(std::span<const double> p, std::span<const double> b) const;
   /// Sum of neighbour terms of eq. 4.11 at (i, j), i.e. ∇²p + diagonal·p.
   double neighbour_sum(std::span<const double> p, int i, int j) const;
@@ -51,6 +51,10 @@ class PoissonOperator {
   PoissonOperator coarsened() const;
 
  private:
+  /// Calls visit(k, (∇²p)_k) for every cell k.
+  template <class Visit>
+  void for_each_laplacian(std::span<const double> p, Visit&& visit) const;
+
   int nx_, ny_;
   double dx_, dy_;
   std::array<PressureBoundary, 4> sides_;

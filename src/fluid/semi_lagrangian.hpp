@@ -6,9 +6,19 @@
 
 namespace jellysim::fluid {
 
+/// x moved by whole periods into [origin, origin + length].
+double wrap_periodic(double x, double origin, double length);
+
 /// Keeps a position inside the domain: wraps along periodic axes, clamps onto the sides
 /// otherwise (Fedkiw et al.'s clamp of back-traced points, §4.2.2).
-Vec2 confine_to_domain(const MacGrid& g, const Boundaries& b, Vec2 p);
+inline Vec2 confine_to_domain(const MacGrid& g, const Boundaries& b, Vec2 p) {
+  const Vec2 c = g.clamp_to_domain(p);
+  if (b.periodic_x() && c.x != p.x) p.x = wrap_periodic(p.x, g.origin_m.x, g.width_m);
+  else p.x = c.x;
+  if (b.periodic_y() && c.y != p.y) p.y = wrap_periodic(p.y, g.origin_m.y, g.height_m);
+  else p.y = c.y;
+  return p;
+}
 
 /// Velocity at the x-face (i, j): u itself and v averaged from the four surrounding y-faces.
 Vec2 velocity_at_u_face(const Velocity& vel, int i, int j);
@@ -21,6 +31,19 @@ Vec2 back_trace(const Velocity& vel, const Boundaries& b, Vec2 x, Vec2 velocity_
 /// back-trace corrected: u_c(x) = u_b(x − Δt u_b)). `src` must have filled ghosts; the interior
 /// faces of `dst` are overwritten and its boundaries applied.
 void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
+
+/// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate
+/// gradients on the interior faces with the boundary values of `b`; keeps its work vectors.
+class ImplicitDiffusion {
+ public:
+  explicit ImplicitDiffusion(const MacGrid& g);
+  /// Returns the CG iterations.
+  int solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
+            int max_iterations = 2000);
+
+ private:
+  Velocity r_, d_, q_, e_;
+};
 
 /// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate
 /// gradients on the interior faces with the boundary values of `b`. Returns the CG iterations.

@@ -8,7 +8,7 @@
 namespace jellysim::fluid {
 
 SemiLagrangianSolver::SemiLagrangianSolver(const MacGrid& grid, const FluidSettings& settings)
-    : FluidSolver(grid, settings), advected_(grid) {}
+    : FluidSolver(grid, settings), advected_(grid), diffusion_(grid) {}
 
 double SemiLagrangianSolver::stable_time_step() const { return std::numeric_limits<double>::infinity(); }
 
@@ -20,7 +20,7 @@ StepReport SemiLagrangianSolver::step(double dt_s) {
   Velocity& vel = state_.velocity;
   apply_velocity_boundaries(vel, b);
   add_body_accelerations(vel, dt_s);                                          // step 1
-  report.diffusion_iterations = diffuse_velocity_implicit(                     // step 2, eq. 4.17
+  report.diffusion_iterations = diffusion_.solve(                              // step 2, eq. 4.17
       vel, b, settings_.viscosity_m2_per_s * dt_s, settings_.diffusion_tolerance);
   apply_velocity_boundaries(vel, b);
   if (settings_.project_before_advection) project(dt_s);                      // §4.2.4 remark

@@ -2,6 +2,7 @@
 // Stam's semi-Lagrangian method, thesis §4.2.4: forces, implicit diffusion (eq. 4.17), optional
 // projection, back-traced advection, projection (eq. 4.14). Unconditionally stable.
 #include "fluid/fluid_solver.hpp"
+#include "fluid/semi_lagrangian.hpp"
 
 namespace jellysim::fluid {
 
@@ -14,6 +15,7 @@ class SemiLagrangianSolver final : public FluidSolver {
 
  private:
   Velocity advected_;
+  ImplicitDiffusion diffusion_;
 };
 
 }  // namespace jellysim::fluid

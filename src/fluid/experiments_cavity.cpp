@@ -1,0 +1,132 @@
+#include "fluid/experiments_cavity.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "fluid/fluid_solver.hpp"
+#include "fluid/projection.hpp"
+
+namespace jellysim::fluid {
+namespace {
+
+FluidSettings cavity_fluid_settings(const DrivenCavitySettings& s) {
+  FluidSettings f;
+  f.viscosity_m2_per_s = s.lid_speed_m_per_s * s.size_m / s.reynolds;
+  f.density_kg_per_m3 = 1.0;
+  f.boundaries = Boundaries::lid_driven_cavity(s.lid_speed_m_per_s);
+  f.pressure_solver = s.pressure_solver;
+  f.pressure.relative_tolerance = s.pressure_tolerance;
+  f.pressure.max_iterations = s.pressure_solver == "sor" ? 100000 : 200;
+  f.safety_factor = s.safety_factor;
+  f.donor_cell_blend = s.donor_cell_blend;
+  f.time_step_policy = TimeStepPolicy::reduce;
+  f.project_before_advection = s.project_before_advection;
+  return f;
+}
+
+double max_change(const Velocity& a, const Velocity& b) {
+  double m = 0.0;
+  for (std::size_t k = 0; k < a.u.raw().size(); ++k) m = std::max(m, std::abs(a.u.raw()[k] - b.u.raw()[k]));
+  for (std::size_t k = 0; k < a.v.raw().size(); ++k) m = std::max(m, std::abs(a.v.raw()[k] - b.v.raw()[k]));
+  return m;
+}
+
+}  // namespace
+
+CentrelineProfile vertical_centreline_u(const FlowState& s, double x_m) {
+  CentrelineProfile p;
+  const MacGrid& g = s.grid;
+  auto add = [&](double y) {
+    p.position_m.push_back(y);
+    p.velocity_m_per_s.push_back(s.velocity.u.sample({x_m, y}));
+  };
+  add(g.origin_m.y);
+  for (int j = 0; j < g.ny; ++j) add(g.world_from_grid(0.0, j + 0.5).y);
+  add(g.origin_m.y + g.height_m);
+  return p;
+}
+
+CentrelineProfile horizontal_centreline_v(const FlowState& s, double y_m) {
+  CentrelineProfile p;
+  const MacGrid& g = s.grid;
+  auto add = [&](double x) {
+    p.position_m.push_back(x);
+    p.velocity_m_per_s.push_back(s.velocity.v.sample({x, y_m}));
+  };
+  add(g.origin_m.x);
+  for (int i = 0; i < g.nx; ++i) add(g.world_from_grid(i + 0.5, 0.0).x);
+  add(g.origin_m.x + g.width_m);
+  return p;
+}
+
+GhiaComparison compare_with_ghia_re100(const FlowState& s) {
+  GhiaComparison c;
+  for (const ProfilePoint& r : kGhiaRe100CentrelineU) {
+    const double e = s.velocity.u.sample({0.5, r.position}) - r.velocity;
+    c.u_error.push_back(e);
+    c.max_abs_u_error = std::max(c.max_abs_u_error, std::abs(e));
+  }
+  for (const ProfilePoint& r : kGhiaRe100CentrelineV) {
+    const double e = s.velocity.v.sample({r.position, 0.5}) - r.velocity;
+    c.v_error.push_back(e);
+    c.max_abs_v_error = std::max(c.max_abs_v_error, std::abs(e));
+  }
+  return c;
+}
+
+DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  const MacGrid grid(settings.cells, settings.cells, settings.size_m, settings.size_m);
+  auto solver = make_fluid_solver(settings.solver, grid, cavity_fluid_settings(settings));
+  DrivenCavityResult result;
+  result.viscosity_m2_per_s = solver->settings().viscosity_m2_per_s;
+  const double U = settings.lid_speed_m_per_s;
+  const double L = settings.size_m;
+  Velocity previous = solver->state().velocity;
+  while (solver->time_s() < settings.max_time_s) {
+    double dt = settings.time_step_s;
+    if (dt <= 0.0) {
+      dt = settings.solver == "eulerian" ? solver->stable_time_step() : grid.dx() / U;
+      if (!std::isfinite(dt)) dt = settings.safety_factor * grid.dx() / U;  // fluid at rest
+    }
+    dt = std::min(dt, settings.max_time_s - solver->time_s());
+    const StepReport report = solver->step(dt);
+    result.steps += report.substeps;
+    if (!report.message.empty() && result.messages.size() < 3) result.messages.push_back(report.message);
+    result.final_change_rate = max_change(solver->state().velocity, previous) / dt * L / (U * U);
+    previous = solver->state().velocity;
+    if (result.final_change_rate < settings.steady_tolerance) {
+      result.steady = true;
+      break;
+    }
+  }
+  result.simulated_time_s = solver->time_s();
+  result.final_state = solver->state();
+  result.max_divergence_per_s = max_divergence(result.final_state.velocity);
+  result.centreline_u = vertical_centreline_u(result.final_state, 0.5 * L);
+  result.centreline_v = horizontal_centreline_v(result.final_state, 0.5 * L);
+  if (std::abs(settings.reynolds - 100.0) < 1e-9 && L == 1.0 && U == 1.0)
+    result.ghia = compare_with_ghia_re100(result.final_state);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::vector<CavityFigurePanel> run_cavity_figure_8_7(const CavityFigureSettings& settings) {
+  std::vector<CavityFigurePanel> panels;
+  for (const char* solver : {"eulerian", "semi-lagrangian"})
+    for (double nu : settings.viscosities_m2_per_s) {
+      DrivenCavitySettings s;
+      s.solver = solver;
+      s.reynolds = 1.0 / nu;  // U = L = 1
+      s.cells = settings.cells;
+      s.time_step_s = settings.time_step_s;
+      s.max_time_s = settings.duration_s;
+      s.steady_tolerance = 0.0;  // run the whole duration, like the thesis' animation
+      s.pressure_solver = settings.pressure_solver;
+      panels.push_back({solver, nu, run_driven_cavity(s)});
+    }
+  return panels;
+}
+
+}  // namespace jellysim::fluid
