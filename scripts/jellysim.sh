@@ -56,6 +56,7 @@ case "$command" in
     build_sanitized
     echo "== tests (AddressSanitizer + UndefinedBehaviorSanitizer) =="
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
       ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 ;;
   *) echo "usage: scripts/jellysim.sh [run [options] | test | build]" >&2; exit 2 ;;
 esac

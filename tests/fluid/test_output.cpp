@@ -12,12 +12,6 @@
 #include "io/vtk_fields.hpp"
 #include "render/field_picture.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-// PLplot's cairo driver leaves fontconfig and libltdl allocations behind at exit; they are not
-// ours, so LeakSanitizer is told to ignore them in this test program.
-extern "C" const char* __lsan_default_suppressions() { return "leak:libfontconfig\nleak:libltdl\n"; }
-#endif
-
 namespace jellysim {
 namespace {
 
