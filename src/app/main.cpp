@@ -25,6 +25,8 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::optional<double> duration;
   bool quiet = false;
+  /// Shorthands for top-level keys some experiments have (e.g. driven-cavity): --solver, --re, --grid.
+  std::vector<std::pair<std::string, std::string>> shorthands;
 };
 
 void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out) {
@@ -67,6 +69,10 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   if (o.duration) {
     if (!ctx.config.has("duration")) throw js::InputError("--duration: experiment '" + e.name + "' has no duration");
     ctx.config.set("duration=" + js::io::format_double(*o.duration));
+  }
+  for (const auto& [key, value] : o.shorthands) {
+    if (!ctx.config.has(key)) throw js::InputError("--" + key + ": experiment '" + e.name + "' has no " + key);
+    ctx.config.set(key + "=" + value);
   }
   auto run = e.prepare(ctx);
   const js::io::OutputDir out(o.out);
@@ -127,6 +133,10 @@ int main(int argc, char** argv) {
                                                    experiment_list());
   exp->add_option("name", exp_name, "Experiment name")->required();
   add_run_options(*exp, exp_opts, "");
+  std::string solver, re, grid;
+  exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
+  exp->add_option("--re", re, "Reynolds number (driven-cavity)");
+  exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
 
   std::string show_name;
   auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
@@ -143,6 +153,9 @@ int main(int argc, char** argv) {
     if (run->parsed()) return run_scene(scene_path, run_opts);
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
+      for (auto [key, value] : {std::pair{"solver", solver}, {"re", re}, {"grid", grid}}) {
+        if (!value.empty()) exp_opts.shorthands.emplace_back(key, value);
+      }
       return run_experiment(js::experiments::find_experiment(exp_name), std::nullopt, exp_opts);
     }
     return list_definitions(show_name);

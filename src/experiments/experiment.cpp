@@ -10,9 +10,11 @@ namespace jellysim::experiments {
 // Defined in one source file per experiment.
 Experiment swinging_bar_experiment();
 Experiment integrator_order_experiment();
+Experiment driven_cavity_experiment();
 
 const std::vector<Experiment>& all_experiments() {
-  static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment()};
+  static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
+                                               driven_cavity_experiment()};
   return list;
 }
 

@@ -172,3 +172,24 @@ TEST(Cli, IntegratorOrderExperimentMeasuresExpectedOrders) {
   EXPECT_TRUE(fs::exists(dir / "convergence.csv"));
   fs::remove_all(dir);
 }
+
+TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
+  const fs::path dir = fresh_dir("cavity");
+  const Result r = jellysim("experiment driven-cavity --quiet --solver eulerian --re 100 --grid 16 "
+                            "--set figure_8_7.enabled=false --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_file(dir / "centerline_u.csv").substr(0, 4), "y,u\n");
+  EXPECT_EQ(read_file(dir / "centerline_v.csv").substr(0, 4), "x,v\n");
+  for (const char* f : {"ghia_comparison.csv", "cavity_speed.png", "cavity_vorticity.png", "cavity.vti"}) {
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  const auto summary = summary_of(dir);
+  EXPECT_EQ(summary["config"]["grid"].get<int>(), 16);
+  // A 16² grid is coarse: the profiles are qualitatively right, within 0.1 of Ghia et al.
+  // (the 0.02 check at 64² is in tests/fluid).
+  EXPECT_LT(summary["ghia_max_abs_u_error"].get<double>(), 0.1);
+  EXPECT_LT(summary["ghia_max_abs_v_error"].get<double>(), 0.1);
+  EXPECT_EQ(jellysim("experiment driven-cavity --quiet --solver rk4 --out " + dir.string() + "_bad").exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir.string() + "_bad"));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,128 @@
+// Lid-driven cavity, thesis §8.1.3 and Figure 8.7, compared with Ghia, Ghia & Shin (1982).
+#include "experiments/experiment.hpp"
+#include "fluid/experiments_cavity.hpp"
+#include "io/errors.hpp"
+#include "io/vtk_fields.hpp"
+#include "render/field_picture.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+struct CavityScene {
+  fluid::DrivenCavitySettings cavity;
+  bool figure_enabled = true;
+  fluid::CavityFigureSettings figure;
+};
+
+CavityScene read_cavity_scene(const io::Config& c) {
+  CavityScene s;
+  s.cavity.solver = c.choice("solver", {"eulerian", "semi-lagrangian"});
+  s.cavity.reynolds = c.number("re", io::Range{0.0, 1e5, true, false});
+  s.cavity.cells = static_cast<int>(c.integer("grid", 4, 1024));
+  s.cavity.pressure_solver = c.choice("cavity.pressure_solver", {"sor", "multigrid"});
+  s.cavity.pressure_tolerance = c.number("cavity.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
+  s.cavity.time_step_s = c.number("cavity.time_step", io::Range::non_negative());
+  s.cavity.safety_factor = c.number("cavity.safety_factor", io::Range{0.0, 1.0, true, false});
+  s.cavity.max_time_s = c.number("cavity.max_time", io::Range::positive());
+  s.cavity.steady_tolerance = c.number("cavity.steady_tolerance", io::Range::positive());
+  s.figure_enabled = c.boolean("figure_8_7.enabled");
+  s.figure.viscosities_m2_per_s = c.numbers("figure_8_7.viscosities", io::Range::positive());
+  s.figure.cells = static_cast<int>(c.integer("figure_8_7.grid", 4, 256));
+  s.figure.time_step_s = c.number("figure_8_7.time_step", io::Range::positive());
+  s.figure.duration_s = c.number("figure_8_7.duration", io::Range::positive());
+  s.figure.pressure_solver = s.cavity.pressure_solver;
+  if (s.figure_enabled && s.figure.viscosities_m2_per_s.empty()) {
+    throw InputError("field 'figure_8_7.viscosities' must list at least one viscosity when figure_8_7.enabled");
+  }
+  return s;
+}
+
+void write_profile_csv(const io::OutputDir& out, const std::string& name, const char* position, const char* velocity,
+                       const fluid::CentrelineProfile& p) {
+  io::CsvWriter csv({position, velocity});
+  for (std::size_t i = 0; i < p.position_m.size(); ++i) csv.row({p.position_m[i], p.velocity_m_per_s[i]});
+  out.write_text(name, csv.text());
+}
+
+void write_ghia_csv(const io::OutputDir& out, const fluid::GhiaComparison& g) {
+  io::CsvWriter csv({"profile", "position", "reference", "computed", "difference"});
+  for (std::size_t i = 0; i < fluid::kGhiaRe100CentrelineU.size(); ++i) {
+    const auto& r = fluid::kGhiaRe100CentrelineU[i];
+    csv.row("u", {r.position, r.velocity, r.velocity + g.u_error[i], g.u_error[i]});
+  }
+  for (std::size_t i = 0; i < fluid::kGhiaRe100CentrelineV.size(); ++i) {
+    const auto& r = fluid::kGhiaRe100CentrelineV[i];
+    csv.row("v", {r.position, r.velocity, r.velocity + g.v_error[i], g.v_error[i]});
+  }
+  out.write_text("ghia_comparison.csv", csv.text());
+}
+
+template <class Writer>
+void write_via_temporary(const io::OutputDir& out, const std::string& name, Writer&& writer) {
+  const auto tmp = out.temporary_for(name);
+  writer(tmp);
+  out.commit(tmp, name);
+}
+
+void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r, const std::string& caption) {
+  render::FieldPicture picture{&r.final_state, caption, {}};
+  render::FieldPictureOptions options;
+  write_via_temporary(out, "cavity_speed.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
+  options.quantity = render::FieldQuantity::vorticity;
+  options.arrows = false;
+  write_via_temporary(out, "cavity_vorticity.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
+  write_via_temporary(out, "cavity.vti", [&](const auto& p) { io::write_flow_vti(p, r.final_state); });
+}
+
+void write_figure_8_7(const io::OutputDir& out, const std::vector<fluid::CavityFigurePanel>& panels) {
+  std::vector<render::FieldPicture> pictures;
+  for (const auto& p : panels) {
+    pictures.push_back({&p.result.final_state, p.solver + ", nu = " + io::format_double(p.viscosity_m2_per_s), {}});
+  }
+  const int columns = static_cast<int>(panels.size() / 2 > 0 ? panels.size() / 2 : 1);
+  render::FieldPictureOptions options;
+  options.panel_px = 360;
+  write_via_temporary(out, "figure_8_7.png",
+                      [&](const auto& p) { render::write_field_panels_png(pictures, columns, options, p); });
+}
+
+nlohmann::ordered_json key_figures(const fluid::DrivenCavityResult& r) {
+  nlohmann::ordered_json j;
+  j["simulated_seconds"] = r.simulated_time_s;
+  j["wall_seconds"] = r.wall_time_s;
+  j["steps"] = r.steps;
+  j["steady"] = r.steady;
+  j["final_change_rate"] = r.final_change_rate;
+  j["viscosity"] = r.viscosity_m2_per_s;
+  j["max_divergence_per_s"] = r.max_divergence_per_s;
+  if (r.ghia) {
+    j["ghia_max_abs_u_error"] = r.ghia->max_abs_u_error;
+    j["ghia_max_abs_v_error"] = r.ghia->max_abs_v_error;
+  }
+  j["messages"] = r.messages;
+  return j;
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context& ctx) {
+  const CavityScene scene = read_cavity_scene(ctx.config);
+  return [scene, ctx](const io::OutputDir& out) {
+    const fluid::DrivenCavityResult r = fluid::run_driven_cavity(scene.cavity);
+    write_profile_csv(out, "centerline_u.csv", "y", "u", r.centreline_u);
+    write_profile_csv(out, "centerline_v.csv", "x", "v", r.centreline_v);
+    if (r.ghia) write_ghia_csv(out, *r.ghia);
+    write_pictures(out, r, scene.cavity.solver + ", Re = " + io::format_double(scene.cavity.reynolds));
+    if (scene.figure_enabled) write_figure_8_7(out, fluid::run_cavity_figure_8_7(scene.figure));
+    // Not reaching a steady state is reported (summary "steady": false), not treated as a failure.
+    write_summary(out, "driven-cavity", ctx.config, key_figures(r), "");
+    return Outcome{};
+  };
+}
+
+}  // namespace
+
+Experiment driven_cavity_experiment() {
+  return {"driven-cavity", "Lid-driven cavity against Ghia et al. (1982) and thesis Figure 8.7 (§8.1.3)",
+          "experiments/driven-cavity.toml", prepare_driven_cavity};
+}
+
+}  // namespace jellysim::experiments
