@@ -11,10 +11,13 @@ namespace jellysim::experiments {
 Experiment swinging_bar_experiment();
 Experiment integrator_order_experiment();
 Experiment driven_cavity_experiment();
+Experiment taylor_green_experiment();
+Experiment solver_cost_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
-                                               driven_cavity_experiment()};
+                                               driven_cavity_experiment(), taylor_green_experiment(),
+                                               solver_cost_experiment()};
   return list;
 }
 

@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -271,6 +272,41 @@ Vec2 Config::vec2(std::string_view key) const {
     throw InputError("field '" + std::string(key) + "' must be an array of 2 numbers, got " + std::to_string(v.size()));
   }
   return {v[0], v[1]};
+}
+
+std::vector<std::int64_t> Config::integers(std::string_view key, std::int64_t min, std::int64_t max) const {
+  const toml::node& n = impl_->node(key);
+  auto a = n.as_array();
+  if (a == nullptr || a->empty()) impl_->wrong_type(key, n, "non-empty array of integers");
+  std::vector<std::int64_t> out;
+  for (const auto& e : *a) {
+    auto i = e.as_integer();
+    if (i == nullptr) impl_->wrong_type(key, n, "non-empty array of integers");
+    if (i->get() < min || i->get() > max) {
+      throw InputError("field '" + std::string(key) + "' has element " + std::to_string(i->get()) +
+                       " out of range [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    }
+    out.push_back(i->get());
+  }
+  return out;
+}
+
+std::vector<std::string> Config::choices(std::string_view key, const std::vector<std::string>& allowed) const {
+  const toml::node& n = impl_->node(key);
+  auto a = n.as_array();
+  if (a == nullptr || a->empty()) impl_->wrong_type(key, n, "non-empty array of strings");
+  std::vector<std::string> out;
+  std::string list;
+  for (const auto& name : allowed) list += (list.empty() ? "" : ", ") + name;
+  for (const auto& e : *a) {
+    auto v = e.as_string();
+    if (v == nullptr) impl_->wrong_type(key, n, "non-empty array of strings");
+    if (std::find(allowed.begin(), allowed.end(), v->get()) == allowed.end()) {
+      throw InputError("field '" + std::string(key) + "' has element \"" + v->get() + "\", not one of: " + list);
+    }
+    out.push_back(v->get());
+  }
+  return out;
 }
 
 nlohmann::ordered_json Config::to_json() const { return node_to_json(impl_->table); }

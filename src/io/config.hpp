@@ -60,6 +60,10 @@ class Config {
   /// A string that must be one of `allowed`.
   std::string choice(std::string_view key, const std::vector<std::string>& allowed) const;
   Vec2 vec2(std::string_view key) const;
+  /// A non-empty array of integers, each in [min, max].
+  std::vector<std::int64_t> integers(std::string_view key, std::int64_t min, std::int64_t max) const;
+  /// A non-empty array of strings, each one of `allowed`.
+  std::vector<std::string> choices(std::string_view key, const std::vector<std::string>& allowed) const;
   std::vector<double> numbers(std::string_view key, Range range = {}) const;
 
   /// The resolved configuration as JSON (for summary.json).

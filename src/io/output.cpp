@@ -79,9 +79,14 @@ void CsvWriter::row(std::initializer_list<double> values) {
   ++rows_;
 }
 
-void CsvWriter::row(std::string_view label, std::initializer_list<double> values) {
-  if (values.size() + 1 != columns_) throw std::logic_error("CSV row has the wrong number of cells");
-  text_ += label;
+void CsvWriter::row(std::initializer_list<std::string_view> labels, std::initializer_list<double> values) {
+  if (labels.size() + values.size() != columns_) throw std::logic_error("CSV row has the wrong number of cells");
+  bool first = true;
+  for (std::string_view label : labels) {
+    if (!first) text_ += ',';
+    text_ += label;
+    first = false;
+  }
   for (double v : values) {
     text_ += ',';
     append_number(v);

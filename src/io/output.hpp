@@ -41,7 +41,9 @@ class CsvWriter {
   /// Appends one row of numbers; the count must equal the column count.
   void row(std::initializer_list<double> values);
   /// Appends one row whose first cell is text (e.g. an integrator name) followed by numbers.
-  void row(std::string_view label, std::initializer_list<double> values);
+  void row(std::string_view label, std::initializer_list<double> values) { row({label}, values); }
+  /// Appends one row whose first cells are text, followed by numbers.
+  void row(std::initializer_list<std::string_view> labels, std::initializer_list<double> values);
   const std::string& text() const { return text_; }
   std::size_t rows() const { return rows_; }
 

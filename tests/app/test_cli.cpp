@@ -193,3 +193,31 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   EXPECT_FALSE(fs::exists(dir.string() + "_bad"));
   fs::remove_all(dir);
 }
+
+TEST(Cli, TaylorGreenMeasuresSpatialOrderOfBothSolvers) {
+  const fs::path dir = fresh_dir("taylor_green");
+  const Result r = jellysim("experiment taylor-green --quiet --set 'study.grids=[16, 32, 64]' --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto orders = summary_of(dir)["measured_orders_l2"];
+  EXPECT_GT(orders["eulerian"].get<double>(), 1.7);        // second order in space
+  EXPECT_NEAR(orders["semi-lagrangian"].get<double>(), 0.9, 0.2);  // first order (splitting, Δt ∝ Δx)
+  EXPECT_EQ(read_file(dir / "taylor_green.csv").substr(0, 16), "solver,cells,dx,");
+  EXPECT_TRUE(fs::exists(dir / "taylor_green.png"));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, SolverCostTablesEveryCombination) {
+  const fs::path dir = fresh_dir("solver_cost");
+  const Result r = jellysim("experiment solver-cost --quiet --set 'study.grids=[16, 32]' --set study.steps=2 --out " +
+                            dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string csv = read_file(dir / "solver_cost.csv");
+  EXPECT_EQ(csv.substr(0, 29), "solver,pressure_solver,cells,");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2 * 2);  // solvers x pressure solvers x grids
+  EXPECT_NE(csv.find("semi-lagrangian,multigrid,32,"), std::string::npos);
+  const Result bad = jellysim("experiment solver-cost --quiet --set 'study.pressure_solvers=[\"jacobi\"]' --out " +
+                              dir.string() + "_bad");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("study.pressure_solvers"), std::string::npos) << bad.output;
+  fs::remove_all(dir);
+}

@@ -113,3 +113,15 @@ TEST(Output, WritesAtomicallyAndFormatsShortestRoundTrip) {
   EXPECT_THROW(csv.row({1.0}), std::logic_error);
   std::filesystem::remove_all(dir);
 }
+
+TEST(Config, ArraysOfIntegersAndChoicesAreChecked) {
+  Config c = Config::parse("grids = [16, 32]\nsolvers = [\"a\", \"b\"]\n", "defaults");
+  EXPECT_EQ(c.integers("grids", 4, 64), (std::vector<std::int64_t>{16, 32}));
+  EXPECT_EQ(c.choices("solvers", {"a", "b", "c"}), (std::vector<std::string>{"a", "b"}));
+  c.set("grids=[16, 128]");
+  EXPECT_NE(error_of([&] { c.integers("grids", 4, 64); }).find("128 out of range [4, 64]"), std::string::npos);
+  c.set("solvers=[\"a\", \"z\"]");
+  EXPECT_NE(error_of([&] { c.choices("solvers", {"a", "b"}); }).find("\"z\", not one of: a, b"), std::string::npos);
+  c.set("grids=[]");
+  EXPECT_NE(error_of([&] { c.integers("grids", 4, 64); }).find("non-empty"), std::string::npos);
+}

@@ -1,0 +1,163 @@
+// Fluid solver studies (thesis ch. 4): `taylor-green` (accuracy and order of convergence against the
+// exact solution) and `solver-cost` (time per step and per simulated second, and accuracy).
+#include "experiments/experiment.hpp"
+#include "fluid/experiments_taylor_green.hpp"
+#include "render/plot.hpp"
+
+#include <cmath>
+
+namespace jellysim::experiments {
+namespace {
+
+const std::vector<std::string> kFluidSolvers = {"eulerian", "semi-lagrangian"};
+const std::vector<std::string> kPressureSolvers = {"sor", "multigrid"};
+
+fluid::TaylorGreen read_flow(const io::Config& c) {
+  return {c.number("flow.length", io::Range::positive()), c.number("flow.speed", io::Range::positive()),
+          c.number("flow.viscosity", io::Range::positive())};
+}
+
+std::vector<int> read_grids(const io::Config& c) {
+  std::vector<int> grids;
+  for (std::int64_t n : c.integers("study.grids", 4, 2048)) grids.push_back(static_cast<int>(n));
+  return grids;
+}
+
+void write_chart(const io::OutputDir& out, const std::string& name, render::ChartSpec chart) {
+  const auto tmp = out.temporary_for(name);
+  render::write_chart_png(chart, tmp);
+  out.commit(tmp, name);
+}
+
+// ---- taylor-green ---------------------------------------------------------------------------
+
+fluid::TaylorGreenSettings read_taylor_green(const io::Config& c) {
+  fluid::TaylorGreenSettings s;
+  s.flow = read_flow(c);
+  s.end_time_s = c.number("flow.end_time", io::Range::positive());
+  s.solvers = c.choices("study.solvers", kFluidSolvers);
+  s.grids = read_grids(c);
+  s.safety_factor = c.number("study.safety_factor", io::Range{0.0, 1.0, true, false});
+  s.semi_lagrangian_courant = c.number("study.semi_lagrangian_courant", io::Range::positive());
+  s.pressure_solver = c.choice("study.pressure_solver", kPressureSolvers);
+  s.pressure_tolerance = c.number("study.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
+  return s;
+}
+
+void write_taylor_green(const io::OutputDir& out, const fluid::TaylorGreenResult& r,
+                        const fluid::TaylorGreenSettings& s) {
+  io::CsvWriter runs({"solver", "cells", "dx", "dt", "steps", "error_l2", "error_max"});
+  io::CsvWriter orders({"solver", "coarse_cells", "fine_cells", "order_l2", "order_max"});
+  render::ChartSpec chart;
+  chart.title = "Taylor-Green vortex: velocity error at t = " + io::format_double(s.end_time_s) + " s";
+  chart.x_label = "grid spacing dx (m)";
+  chart.y_label = "RMS velocity error (m/s)";
+  chart.log_x = chart.log_y = true;
+  for (const std::string& solver : s.solvers) {
+    render::Series series;
+    series.label = solver + " (order " + io::format_double(std::round(r.fitted_order_l2(solver) * 100) / 100) + ")";
+    series.markers = true;
+    for (const auto& run : r.runs) {
+      if (run.solver != solver) continue;
+      const double dx = s.flow.length_m / run.cells;
+      runs.row(solver, {static_cast<double>(run.cells), dx, run.dt_s, static_cast<double>(run.steps), run.error_l2,
+                        run.error_max});
+      series.x.push_back(dx);
+      series.y.push_back(run.error_l2);
+    }
+    chart.series.push_back(std::move(series));
+  }
+  for (const auto& o : r.orders) {
+    orders.row(o.solver, {static_cast<double>(o.coarse_cells), static_cast<double>(o.fine_cells), o.order_l2,
+                          o.order_max});
+  }
+  out.write_text("taylor_green.csv", runs.text());
+  out.write_text("orders.csv", orders.text());
+  write_chart(out, "taylor_green.png", std::move(chart));
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context& ctx) {
+  const fluid::TaylorGreenSettings settings = read_taylor_green(ctx.config);
+  return [settings, ctx](const io::OutputDir& out) {
+    const fluid::TaylorGreenResult r = fluid::run_taylor_green(settings);
+    write_taylor_green(out, r, settings);
+    nlohmann::ordered_json figures, fitted;
+    double wall = 0.0;
+    for (const auto& run : r.runs) wall += run.wall_time_s;
+    for (const std::string& solver : settings.solvers) fitted[solver] = r.fitted_order_l2(solver);
+    figures["wall_seconds"] = wall;
+    figures["measured_orders_l2"] = fitted;
+    write_summary(out, "taylor-green", ctx.config, figures, "");
+    return Outcome{};
+  };
+}
+
+// ---- solver-cost ----------------------------------------------------------------------------
+
+fluid::SolverCostSettings read_solver_cost(const io::Config& c) {
+  fluid::SolverCostSettings s;
+  s.flow = read_flow(c);
+  s.grids = read_grids(c);
+  s.solvers = c.choices("study.solvers", kFluidSolvers);
+  s.pressure_solvers = c.choices("study.pressure_solvers", kPressureSolvers);
+  s.steps = static_cast<int>(c.integer("study.steps", 1, 100000));
+  s.pressure_tolerance = c.number("study.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
+  s.safety_factor = c.number("study.safety_factor", io::Range{0.0, 1.0, true, false});
+  s.semi_lagrangian_courant = c.number("study.semi_lagrangian_courant", io::Range::positive());
+  s.sor_optimal_omega = c.boolean("study.sor_optimal_omega");
+  return s;
+}
+
+void write_solver_cost(const io::OutputDir& out, const std::vector<fluid::SolverCostRow>& rows) {
+  io::CsvWriter csv({"solver", "pressure_solver", "cells", "dt", "steps", "seconds_per_step",
+                     "seconds_per_simulated_second", "mean_pressure_iterations", "error_l2"});
+  render::ChartSpec chart;
+  chart.title = "Fluid solver cost per step";
+  chart.x_label = "cells";
+  chart.y_label = "seconds per step";
+  chart.log_x = chart.log_y = true;
+  chart.legend = render::LegendCorner::TopLeft;
+  for (const auto& r : rows) {
+    const std::string label = r.solver + " + " + r.pressure_solver;
+    csv.row({r.solver, r.pressure_solver}, {static_cast<double>(r.cells), r.dt_s, static_cast<double>(r.steps), r.seconds_per_step,
+                    r.seconds_per_simulated_second, r.mean_pressure_iterations, r.error_l2});
+    if (chart.series.empty() || chart.series.back().label != label) {
+      chart.series.emplace_back();
+      chart.series.back().label = label;
+      chart.series.back().markers = true;
+    }
+    chart.series.back().x.push_back(static_cast<double>(r.cells) * r.cells);
+    chart.series.back().y.push_back(r.seconds_per_step);
+  }
+  out.write_text("solver_cost.csv", csv.text());
+  write_chart(out, "solver_cost.png", std::move(chart));
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_solver_cost(const Context& ctx) {
+  const fluid::SolverCostSettings settings = read_solver_cost(ctx.config);
+  return [settings, ctx](const io::OutputDir& out) {
+    const std::vector<fluid::SolverCostRow> rows = fluid::run_solver_cost(settings);
+    write_solver_cost(out, rows);
+    nlohmann::ordered_json figures, per_step = nlohmann::ordered_json::object();
+    for (const auto& r : rows) {
+      per_step[r.solver + "+" + r.pressure_solver + "@" + std::to_string(r.cells)] = r.seconds_per_step;
+    }
+    figures["seconds_per_step"] = per_step;
+    write_summary(out, "solver-cost", ctx.config, figures, "");
+    return Outcome{};
+  };
+}
+
+}  // namespace
+
+Experiment taylor_green_experiment() {
+  return {"taylor-green", "Periodic Taylor-Green vortex: errors and convergence order of both fluid solvers",
+          "experiments/taylor-green.toml", prepare_taylor_green};
+}
+
+Experiment solver_cost_experiment() {
+  return {"solver-cost", "Time per step and accuracy of both fluid solvers with SOR and multigrid pressure",
+          "experiments/solver-cost.toml", prepare_solver_cost};
+}
+
+}  // namespace jellysim::experiments
