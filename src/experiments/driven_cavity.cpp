@@ -25,6 +25,8 @@ CavityScene read_cavity_scene(const io::Config& c) {
   s.cavity.safety_factor = c.number("cavity.safety_factor", io::Range{0.0, 1.0, true, false});
   s.cavity.max_time_s = c.number("cavity.max_time", io::Range::positive());
   s.cavity.steady_tolerance = c.number("cavity.steady_tolerance", io::Range::positive());
+  s.cavity.frame_interval_s = c.number("output.frame_interval", io::Range::non_negative());
+  s.cavity.tracers_per_side = static_cast<int>(c.integer("output.tracers_per_side", 0, 1000));
   s.figure_enabled = c.boolean("figure_8_7.enabled");
   s.figure.viscosities_m2_per_s = c.numbers("figure_8_7.viscosities", io::Range::positive());
   s.figure.cells = static_cast<int>(c.integer("figure_8_7.grid", 4, 256));
@@ -35,6 +37,13 @@ CavityScene read_cavity_scene(const io::Config& c) {
     throw InputError("field 'figure_8_7.viscosities' must list at least one viscosity when figure_8_7.enabled");
   }
   return s;
+}
+
+template <class Writer>
+void write_via_temporary(const io::OutputDir& out, const std::string& name, Writer&& writer) {
+  const auto tmp = out.temporary_for(name);
+  writer(tmp);
+  out.commit(tmp, name);
 }
 
 void write_profile_csv(const io::OutputDir& out, const std::string& name, const char* position, const char* velocity,
@@ -57,15 +66,32 @@ void write_ghia_csv(const io::OutputDir& out, const fluid::GhiaComparison& g) {
   out.write_text("ghia_comparison.csv", csv.text());
 }
 
-template <class Writer>
-void write_via_temporary(const io::OutputDir& out, const std::string& name, Writer&& writer) {
-  const auto tmp = out.temporary_for(name);
-  writer(tmp);
-  out.commit(tmp, name);
-}
+/// Writes each frame's field (.vti) and tracers (.vtp) into frames/ and remembers them for the .pvd.
+class VtkFrameWriter {
+ public:
+  explicit VtkFrameWriter(const io::OutputDir& out) : out_(out), frames_(out.file("frames")) {}
+
+  void operator()(double t, const fluid::FlowState& state, const std::vector<Vec2>& tracers) {
+    const std::string id = std::to_string(1000000 + entries_.size() / 2).substr(1);
+    const std::string field = "field_" + id + ".vti", points = "tracers_" + id + ".vtp";
+    write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, state); });
+    write_via_temporary(frames_, points, [&](const auto& p) { io::write_points_vtp(p, tracers); });
+    entries_.push_back({t, "frames/" + field, 0});
+    entries_.push_back({t, "frames/" + points, 1});
+  }
+  /// The ParaView time series of every frame written so far.
+  void write_series() const {
+    if (!entries_.empty()) write_via_temporary(out_, "cavity.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
+  }
+
+ private:
+  const io::OutputDir& out_;
+  io::OutputDir frames_;
+  std::vector<io::PvdEntry> entries_;
+};
 
 void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r, const std::string& caption) {
-  render::FieldPicture picture{&r.final_state, caption, {}};
+  render::FieldPicture picture{&r.final_state, caption, r.final_tracers_m};
   render::FieldPictureOptions options;
   write_via_temporary(out, "cavity_speed.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
   options.quantity = render::FieldQuantity::vorticity;
@@ -106,7 +132,14 @@ nlohmann::ordered_json key_figures(const fluid::DrivenCavityResult& r) {
 std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context& ctx) {
   const CavityScene scene = read_cavity_scene(ctx.config);
   return [scene, ctx](const io::OutputDir& out) {
-    const fluid::DrivenCavityResult r = fluid::run_driven_cavity(scene.cavity);
+    fluid::DrivenCavitySettings cavity = scene.cavity;
+    std::shared_ptr<VtkFrameWriter> frames;
+    if (cavity.frame_interval_s > 0.0) {
+      frames = std::make_shared<VtkFrameWriter>(out);
+      cavity.on_frame = [frames](double t, const fluid::FlowState& s, const std::vector<Vec2>& p) { (*frames)(t, s, p); };
+    }
+    const fluid::DrivenCavityResult r = fluid::run_driven_cavity(cavity);
+    if (frames) frames->write_series();
     write_profile_csv(out, "centerline_u.csv", "y", "u", r.centreline_u);
     write_profile_csv(out, "centerline_v.csv", "x", "v", r.centreline_v);
     if (r.ghia) write_ghia_csv(out, *r.ghia);

@@ -6,6 +6,7 @@
 
 #include "fluid/fluid_solver.hpp"
 #include "fluid/projection.hpp"
+#include "fluid/tracers.hpp"
 
 namespace jellysim::fluid {
 namespace {
@@ -84,6 +85,15 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
   const double U = settings.lid_speed_m_per_s;
   const double L = settings.size_m;
   Velocity previous = solver->state().velocity;
+  const int n = settings.tracers_per_side;
+  Tracers tracers = n > 0 ? Tracers::lattice({0.05 * L, 0.05 * L}, {0.95 * L, 0.95 * L}, n, n) : Tracers{};
+  const bool frames = settings.on_frame && settings.frame_interval_s > 0.0;
+  int next_frame = 0;
+  auto emit_frame = [&] {
+    settings.on_frame(solver->time_s(), solver->state(), tracers.positions());
+    ++next_frame;
+  };
+  if (frames) emit_frame();
   while (solver->time_s() < settings.max_time_s) {
     double dt = settings.time_step_s;
     if (dt <= 0.0) {
@@ -91,7 +101,12 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
       if (!std::isfinite(dt)) dt = settings.safety_factor * grid.dx() / U;  // fluid at rest
     }
     dt = std::min(dt, settings.max_time_s - solver->time_s());
+    const double frame_time = next_frame * settings.frame_interval_s;
+    const bool lands_on_frame = frames && solver->time_s() + dt >= frame_time - 1e-12;
+    if (lands_on_frame) dt = frame_time - solver->time_s();
     const StepReport report = solver->step(dt);
+    tracers.advect(solver->state().velocity, solver->settings().boundaries, dt);
+    if (lands_on_frame) emit_frame();
     result.steps += report.substeps;
     if (!report.message.empty() && result.messages.size() < 3) result.messages.push_back(report.message);
     result.final_change_rate = max_change(solver->state().velocity, previous) / dt * L / (U * U);
@@ -102,7 +117,9 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
     }
   }
   result.simulated_time_s = solver->time_s();
+  if (frames && solver->time_s() > (next_frame - 1) * settings.frame_interval_s) emit_frame();  // the last state
   result.final_state = solver->state();
+  result.final_tracers_m = tracers.positions();
   result.max_divergence_per_s = max_divergence(result.final_state.velocity);
   result.centreline_u = vertical_centreline_u(result.final_state, 0.5 * L);
   result.centreline_v = horizontal_centreline_v(result.final_state, 0.5 * L);

@@ -2,6 +2,7 @@
 // Driven-cavity experiments of thesis §8.1.3: a unit square of fluid whose top side moves with
 // speed U (in-flow tangential to the side, i.e. a moving no-slip lid), the other sides no-slip.
 // Library functions only: the CLI, CSV, summary.json and pictures are written by the caller.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,12 @@ struct DrivenCavitySettings {
   double max_time_s = 60.0;                  ///< stop here if not steady before
   /// Steady when max|u(t+Δt) − u(t)| / Δt < tolerance · U²/L.
   double steady_tolerance = 1e-5;
+  /// Marker particles on a tracers_per_side² lattice, carried by the flow (Figures 8.11/8.12).
+  int tracers_per_side = 0;
+  /// Output frames: called at t = 0, every frame_interval_s (steps are shortened to land on those
+  /// times) and at the end, with the flow and the tracer positions. 0 or no callback: no frames.
+  double frame_interval_s = 0.0;
+  std::function<void(double t_s, const FlowState& state, const std::vector<Vec2>& tracers_m)> on_frame;
 };
 
 /// A velocity component sampled along a line: positions (m) and values (m/s).
@@ -57,6 +64,7 @@ struct DrivenCavityResult {
   double wall_time_s = 0.0;
   std::vector<std::string> messages;  ///< e.g. Δt reductions (first few)
   FlowState final_state;
+  std::vector<Vec2> final_tracers_m;
 };
 
 DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings);

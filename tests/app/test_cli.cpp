@@ -180,9 +180,18 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_file(dir / "centerline_u.csv").substr(0, 4), "y,u\n");
   EXPECT_EQ(read_file(dir / "centerline_v.csv").substr(0, 4), "x,v\n");
-  for (const char* f : {"ghia_comparison.csv", "cavity_speed.png", "cavity_vorticity.png", "cavity.vti"}) {
+  for (const char* f : {"ghia_comparison.csv", "cavity_speed.png", "cavity_vorticity.png", "cavity.vti", "cavity.pvd",
+                        "frames/field_000000.vti", "frames/tracers_000000.vtp"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   }
+  // The time series lists a field and a tracer file per frame, each of which exists.
+  const std::string pvd = read_file(dir / "cavity.pvd");
+  int listed = 0;
+  for (auto pos = pvd.find("file=\""); pos != std::string::npos; pos = pvd.find("file=\"", pos + 1), ++listed) {
+    const auto start = pos + 6;
+    EXPECT_TRUE(fs::exists(dir / pvd.substr(start, pvd.find('"', start) - start)));
+  }
+  EXPECT_GE(listed, 2 * 5);  // at least five frames at the default interval of 1 s
   const auto summary = summary_of(dir);
   EXPECT_EQ(summary["config"]["grid"].get<int>(), 16);
   // A 16² grid is coarse: the profiles are qualitatively right, within 0.1 of Ghia et al.
