@@ -3,7 +3,9 @@
 //    a zero initial guess on an n × n all-wall (pure Neumann) cavity with a fixed smooth+rough
 //    right-hand side. Reports cells and iterations; time/cell shows the growth with N.
 //  - BM_FluidStep/<solver>/<n>: one full step of each fluid solver (multigrid, 1e-6) on a
-//    periodic Taylor–Green vortex (ν = 1e-3), Eulerian at its stable Δt, semi-Lagrangian at CFL 1.
+//    periodic Taylor–Green vortex (ν = 1e-3), Eulerian at its stable Δt, semi-Lagrangian at CFL 1;
+//    _PlainWarmStart: without the time-extrapolated pressure guess.
+//  - BM_Advection/{fast,reference}/<n>, BM_ImplicitDiffusion/<n>: parts of that step.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -12,6 +14,7 @@
 #include "fluid/experiments_taylor_green.hpp"
 #include "fluid/fluid_solver.hpp"
 #include "fluid/poisson.hpp"
+#include "fluid/semi_lagrangian.hpp"
 
 namespace {
 
@@ -53,7 +56,7 @@ void pressure_solve(benchmark::State& state, const char* name) {
 void BM_PressureSolve_Multigrid(benchmark::State& state) { pressure_solve(state, "multigrid"); }
 void BM_PressureSolve_Sor(benchmark::State& state) { pressure_solve(state, "sor"); }
 
-void fluid_step(benchmark::State& state, const char* name) {
+void fluid_step(benchmark::State& state, const char* name, bool extrapolate_pressure = true) {
   const int n = static_cast<int>(state.range(0));
   const TaylorGreen flow{6.283185307179586, 1.0, 1e-3};
   const MacGrid g(n, n, flow.length_m, flow.length_m);
@@ -63,23 +66,75 @@ void fluid_step(benchmark::State& state, const char* name) {
   f.boundaries = Boundaries::all(BoundaryType::periodic);
   f.pressure_solver = "multigrid";
   f.pressure.relative_tolerance = 1e-6;
+  f.extrapolate_pressure_guess = extrapolate_pressure;
   auto solver = make_fluid_solver(name, g, f);
   solver->state().velocity = flow.sample(g, 0.0);
   solver->apply_boundaries();
   const double dt = std::string_view(name) == "eulerian" ? solver->stable_time_step() : g.dx() / flow.speed_m_per_s;
-  solver->step(dt);
-  int iterations = 0;
-  for (auto _ : state) iterations = solver->step(dt).pressure.iterations;
+  for (int warm_up = 0; warm_up < 3; ++warm_up) solver->step(dt);  // pressure history filled
+  StepReport report;
+  for (auto _ : state) report = solver->step(dt);
   state.counters["cells"] = static_cast<double>(n) * n;
-  state.counters["pressure_cycles"] = iterations;
+  state.counters["pressure_cycles"] = report.pressure.iterations;
+  if (report.diffusion_iterations > 0) state.counters["diffusion_cg"] = report.diffusion_iterations;
+}
+
+// The parts of the semi-Lagrangian step on the same Taylor–Green field (periodic, ν = 1e-3,
+// Δt = Δx/U): advection (row-wise fast path against the point-wise reference) and the implicit
+// diffusion solve (tolerance 1e-8, the solver's default).
+struct TaylorGreenField {
+  TaylorGreen flow{6.283185307179586, 1.0, 1e-3};
+  MacGrid grid;
+  Boundaries sides = Boundaries::all(BoundaryType::periodic);
+  Velocity velocity;
+  double dt_s;
+  explicit TaylorGreenField(int n)
+      : grid(n, n, flow.length_m, flow.length_m), velocity(flow.sample(grid, 0.0)), dt_s(grid.dx() / flow.speed_m_per_s) {
+    apply_velocity_boundaries(velocity, sides);
+  }
+};
+
+template <void (*Advect)(const Velocity&, const Boundaries&, double, Velocity&)>
+void BM_Advection(benchmark::State& state) {
+  const TaylorGreenField f(static_cast<int>(state.range(0)));
+  Velocity out(f.grid);
+  for (auto _ : state) {
+    Advect(f.velocity, f.sides, f.dt_s, out);
+    benchmark::DoNotOptimize(out.u.raw().data());
+  }
+  state.counters["faces"] = static_cast<double>(f.grid.nx) * f.grid.ny * 2;
+}
+
+void BM_ImplicitDiffusion(benchmark::State& state) {
+  const TaylorGreenField f(static_cast<int>(state.range(0)));
+  ImplicitDiffusion diffusion(f.grid);
+  Velocity v = f.velocity;
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    v = f.velocity;
+    state.ResumeTiming();
+    iterations = diffusion.solve(v, f.sides, f.flow.viscosity_m2_per_s * f.dt_s, 1e-8);
+  }
+  state.counters["cg_iterations"] = iterations;
 }
 
 void BM_FluidStep_Eulerian(benchmark::State& state) { fluid_step(state, "eulerian"); }
 void BM_FluidStep_SemiLagrangian(benchmark::State& state) { fluid_step(state, "semi-lagrangian"); }
+// The same with the previous pressure alone as the initial guess (FluidSettings::
+// extrapolate_pressure_guess = false), i.e. without the time extrapolation that Taylor–Green's
+// smoothly decaying pressure favours.
+void BM_FluidStep_SemiLagrangian_PlainWarmStart(benchmark::State& state) {
+  fluid_step(state, "semi-lagrangian", false);
+}
 
 }  // namespace
 
 BENCHMARK(BM_PressureSolve_Multigrid)->RangeMultiplier(2)->Range(32, 1024)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PressureSolve_Sor)->RangeMultiplier(2)->Range(32, 512)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FluidStep_Eulerian)->RangeMultiplier(2)->Range(64, 512)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Advection<advect_velocity>)->Name("BM_Advection/fast")->RangeMultiplier(2)->Range(128, 512)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Advection<advect_velocity_reference>)->Name("BM_Advection/reference")->RangeMultiplier(2)->Range(128, 512)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ImplicitDiffusion)->RangeMultiplier(2)->Range(128, 512)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FluidStep_SemiLagrangian)->RangeMultiplier(2)->Range(64, 512)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FluidStep_SemiLagrangian_PlainWarmStart)->RangeMultiplier(2)->Range(64, 512)->Unit(benchmark::kMillisecond);

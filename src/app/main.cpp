@@ -86,13 +86,15 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   return 0;
 }
 
-int run_scene(const std::string& scene_path, const RunOptions& o) {
+int run_scene(const std::string& scene_path, const RunOptions& o, const std::string& default_scene) {
   std::optional<js::io::Config> scene;
-  std::string name = "swinging-bar";  // the built-in default scene
+  std::string name = default_scene;
   if (!scene_path.empty()) {
     scene = js::io::Config::load(scene_path);
     if (!scene->has("scene")) throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
     name = scene->string("scene");
+    // `run` on a jellyfish scene renders it too: the animation job extends the jellyfish scene.
+    if (default_scene == "animation" && name == "jellyfish") name = "animation";
   }
   return run_experiment(js::experiments::find_experiment(name), scene, o);
 }
@@ -123,9 +125,31 @@ int main(int argc, char** argv) {
 
   RunOptions run_opts;
   std::string scene_path;
-  auto* run = app.add_subcommand("run", "Simulate a scene (default: the built-in scene) and write its outputs");
+  auto* run = app.add_subcommand("run", "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its "
+      "outputs; for a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json");
   run->add_option("scene", scene_path, "Scene file (TOML); omitted: the built-in default scene")->check(CLI::ExistingFile);
   add_run_options(*run, run_opts, "out");
+
+  RunOptions sim_opts;
+  std::string sim_scene_path;
+  auto* simulate = app.add_subcommand(
+      "simulate", "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, "
+                  "slices.csv, plots, a picture and VTK fields per frame, summary.json");
+  simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
+      ->check(CLI::ExistingFile);
+  add_run_options(*simulate, sim_opts, "out/simulate");
+
+  RunOptions sweep_opts;
+  std::string sweep_scene_path;
+  std::vector<double> sweep_frequencies;
+  auto* sweep = app.add_subcommand(
+      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14), one simulation per "
+               "frequency on every core: sweep.csv, sweep.png, trajectories.png, summary.json");
+  sweep->add_option("scene", sweep_scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
+      ->check(CLI::ExistingFile);
+  sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")
+      ->delimiter(',');
+  add_run_options(*sweep, sweep_opts, "out/sweep");
 
   RunOptions exp_opts;
   std::string exp_name;
@@ -150,7 +174,18 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitBadInput;
   }
   try {
-    if (run->parsed()) return run_scene(scene_path, run_opts);
+    if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
+    if (simulate->parsed()) return run_scene(sim_scene_path, sim_opts, "jellyfish");
+    if (sweep->parsed()) {
+      if (!sweep_frequencies.empty()) {
+        std::string list;
+        for (double f : sweep_frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
+        sweep_opts.sets.push_back("sweep.frequencies=[" + list + "]");
+      }
+      std::optional<js::io::Config> scene;
+      if (!sweep_scene_path.empty()) scene = js::io::Config::load(sweep_scene_path);
+      return run_experiment(js::experiments::find_experiment("frequency-sweep"), scene, sweep_opts);
+    }
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
       for (auto [key, value] : {std::pair{"solver", solver}, {"re", re}, {"grid", grid}}) {

@@ -8,6 +8,8 @@
 namespace jellysim::experiments {
 namespace {
 
+using io::write_via_temporary;
+
 struct CavityScene {
   fluid::DrivenCavitySettings cavity;
   bool figure_enabled = true;
@@ -37,13 +39,6 @@ CavityScene read_cavity_scene(const io::Config& c) {
     throw InputError("field 'figure_8_7.viscosities' must list at least one viscosity when figure_8_7.enabled");
   }
   return s;
-}
-
-template <class Writer>
-void write_via_temporary(const io::OutputDir& out, const std::string& name, Writer&& writer) {
-  const auto tmp = out.temporary_for(name);
-  writer(tmp);
-  out.commit(tmp, name);
 }
 
 void write_profile_csv(const io::OutputDir& out, const std::string& name, const char* position, const char* velocity,
@@ -91,7 +86,10 @@ class VtkFrameWriter {
 };
 
 void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r, const std::string& caption) {
-  render::FieldPicture picture{&r.final_state, caption, r.final_tracers_m};
+  render::FieldPicture picture;
+  picture.state = &r.final_state;
+  picture.caption = caption;
+  picture.tracers_m = r.final_tracers_m;
   render::FieldPictureOptions options;
   write_via_temporary(out, "cavity_speed.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
   options.quantity = render::FieldQuantity::vorticity;
@@ -103,7 +101,10 @@ void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r
 void write_figure_8_7(const io::OutputDir& out, const std::vector<fluid::CavityFigurePanel>& panels) {
   std::vector<render::FieldPicture> pictures;
   for (const auto& p : panels) {
-    pictures.push_back({&p.result.final_state, p.solver + ", nu = " + io::format_double(p.viscosity_m2_per_s), {}});
+    render::FieldPicture picture;
+    picture.state = &p.result.final_state;
+    picture.caption = p.solver + ", nu = " + io::format_double(p.viscosity_m2_per_s);
+    pictures.push_back(std::move(picture));
   }
   const int columns = static_cast<int>(panels.size() / 2 > 0 ? panels.size() / 2 : 1);
   render::FieldPictureOptions options;

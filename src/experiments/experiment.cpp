@@ -13,11 +13,32 @@ Experiment integrator_order_experiment();
 Experiment driven_cavity_experiment();
 Experiment taylor_green_experiment();
 Experiment solver_cost_experiment();
+Experiment jellyfish_experiment();
+Experiment animation_experiment();
+Experiment oval_membrane_experiment();
+Experiment kinematics_experiment();
+Experiment morphology_experiment();
+Experiment structural_instability_experiment();
+Experiment numerical_instability_experiment();
+Experiment frequency_sweep_experiment();
+Experiment fluidless_experiment();
+Experiment coupling_stability_experiment();
+Experiment bar_hits_wall_experiment();
+Experiment bar_hits_particle_experiment();
+Experiment sph_stream_experiment();
+Experiment mosquito_larva_experiment();
+Experiment integrator_cost_experiment();
+Experiment stages_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
                                                driven_cavity_experiment(), taylor_green_experiment(),
-                                               solver_cost_experiment()};
+                                               solver_cost_experiment(), jellyfish_experiment(), animation_experiment(), oval_membrane_experiment(), kinematics_experiment(),
+                                               morphology_experiment(), structural_instability_experiment(),
+                                               numerical_instability_experiment(), frequency_sweep_experiment(),
+                                               fluidless_experiment(), coupling_stability_experiment(), bar_hits_wall_experiment(),
+                                               bar_hits_particle_experiment(), sph_stream_experiment(),
+                                               mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment()};
   return list;
 }
 
@@ -38,7 +59,11 @@ std::string_view embedded_text(std::string_view path) {
 }
 
 io::Config default_config(const Experiment& experiment) {
-  return io::Config::parse(embedded_text(experiment.definition_path), "built-in " + experiment.definition_path);
+  io::Config own = io::Config::parse(embedded_text(experiment.definition_path), "built-in " + experiment.definition_path);
+  if (experiment.base_path.empty()) return own;
+  io::Config base = io::Config::parse(embedded_text(experiment.base_path), "built-in " + experiment.base_path);
+  base.extend(own);
+  return base;
 }
 
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,

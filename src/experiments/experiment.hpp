@@ -31,6 +31,9 @@ struct Experiment {
   std::string description;
   std::string definition_path;  ///< embedded TOML file with the defaults, e.g. "scenes/swinging-bar.toml"
   std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare;
+  /// Optional embedded scene whose fields the definition extends (e.g. "scenes/jellyfish.toml"): the
+  /// defaults are the base scene's, overridden and extended by the definition file.
+  std::string base_path{};
 };
 
 const std::vector<Experiment>& all_experiments();

@@ -16,6 +16,7 @@ FluidSolver::FluidSolver(const MacGrid& grid, const FluidSettings& settings)
       body_acceleration_(grid),
       projector_(make_pressure_solver(settings.pressure_solver, settings.pressure)) {
   settings_.boundaries.validate();
+  projector_.set_extrapolation(settings_.extrapolate_pressure_guess);
   if (!(settings_.viscosity_m2_per_s >= 0.0)) throw std::invalid_argument("viscosity must be >= 0");
   if (!(settings_.density_kg_per_m3 > 0.0)) throw std::invalid_argument("density must be > 0");
   if (!(settings_.safety_factor > 0.0 && settings_.safety_factor <= 1.0))
@@ -27,11 +28,17 @@ void FluidSolver::add_body_accelerations(Velocity& vel, double dt_s) const {
   const MacGrid& g = state_.grid;
   const Vec2 gravity = settings_.gravity_m_per_s2;
   const FaceRange ru = interior_u_faces(g, settings_.boundaries);
-  for (int j = ru.j_begin; j < ru.j_end; ++j)
-    for (int i = ru.i_begin; i < ru.i_end; ++i) vel.u(i, j) += dt_s * (gravity.x + body_acceleration_.u(i, j));
+  for (int j = ru.j_begin; j < ru.j_end; ++j) {
+    const double* a = body_acceleration_.u.ptr(0, j);
+    double* u = vel.u.ptr(0, j);
+    for (int i = ru.i_begin; i < ru.i_end; ++i) u[i] += dt_s * (gravity.x + a[i]);
+  }
   const FaceRange rv = interior_v_faces(g, settings_.boundaries);
-  for (int j = rv.j_begin; j < rv.j_end; ++j)
-    for (int i = rv.i_begin; i < rv.i_end; ++i) vel.v(i, j) += dt_s * (gravity.y + body_acceleration_.v(i, j));
+  for (int j = rv.j_begin; j < rv.j_end; ++j) {
+    const double* a = body_acceleration_.v.ptr(0, j);
+    double* v = vel.v.ptr(0, j);
+    for (int i = rv.i_begin; i < rv.i_end; ++i) v[i] += dt_s * (gravity.y + a[i]);
+  }
 }
 
 PressureSolveReport FluidSolver::project(double dt_s) {

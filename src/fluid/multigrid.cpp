@@ -34,15 +34,20 @@ ProlongationAxis make_prolongation_axis(int fine_n, PressureBoundary lower, Pres
   return a;
 }
 
-// Averages each block of 2×2 fine residuals into the coarse right-hand side.
-void restrict_full_weighting(std::span<const double> fine, int fine_nx, std::span<double> coarse,
-                             int coarse_nx, int coarse_ny) {
-  for (int J = 0; J < coarse_ny; ++J)
-    for (int I = 0; I < coarse_nx; ++I) {
-      const std::size_t f = static_cast<std::size_t>(2 * J) * fine_nx + 2 * I;
-      coarse[static_cast<std::size_t>(J) * coarse_nx + I] =
-          0.25 * (fine[f] + fine[f + 1] + fine[f + fine_nx] + fine[f + fine_nx + 1]);
-    }
+// The fine residual b − ∇²p averaged over each block of 2×2 cells into the coarse right-hand
+// side, two fine rows at a time (the fine residual is never stored as a whole).
+void restrict_residual(const PoissonOperator& op, std::span<const double> p, std::span<const double> b,
+                       std::span<double> coarse, int coarse_nx, int coarse_ny, std::vector<double>& rows) {
+  const std::size_t fine_nx = static_cast<std::size_t>(op.nx());
+  rows.resize(2 * fine_nx);
+  double* r0 = rows.data();
+  double* r1 = rows.data() + fine_nx;
+  for (int J = 0; J < coarse_ny; ++J) {
+    op.residual_row(p, b, 2 * J, r0);
+    op.residual_row(p, b, 2 * J + 1, r1);
+    double* c = coarse.data() + static_cast<std::size_t>(J) * coarse_nx;
+    for (int I = 0; I < coarse_nx; ++I) c[I] = 0.25 * (r0[2 * I] + r0[2 * I + 1] + r1[2 * I] + r1[2 * I + 1]);
+  }
 }
 
 // Bilinear cell-centred prolongation, first along y into a padded row (with the ghost values of
@@ -78,34 +83,53 @@ inline void relax_cell(const PoissonOperator& op, std::span<const double> b, std
   p[k] = (op.neighbour_sum(p, i, j) - b[k]) / diag;
 }
 
-void relax_colour(const PoissonOperator& op, std::span<const double> b, std::span<double> p, int colour) {
+// Gauss–Seidel update of the cells of one colour ((i + j + colour) even) in row j.
+void relax_row(const PoissonOperator& op, std::span<const double> b, std::span<double> p, int j, int colour,
+               double cx, double cy, double inv_diag) {
   const int nx = op.nx();
   const int ny = op.ny();
-  const double cx = 1.0 / (op.dx() * op.dx());
-  const double cy = 1.0 / (op.dy() * op.dy());
-  const double inv_diag = 1.0 / (2.0 * cx + 2.0 * cy);
-  for (int j = 0; j < ny; ++j) {
-    const int first = (j + colour) % 2;
-    const bool interior_row = j > 0 && j < ny - 1;
-    if (!interior_row || nx < 3) {
-      for (int i = first; i < nx; i += 2) relax_cell(op, b, p, i, j);
-      continue;
-    }
-    if (first == 0) relax_cell(op, b, p, 0, j);
-    double* row = p.data() + static_cast<std::size_t>(j) * nx;
-    const double* brow = b.data() + static_cast<std::size_t>(j) * nx;
-    for (int i = first == 0 ? 2 : 1; i < nx - 1; i += 2)
-      row[i] = (cx * (row[i - 1] + row[i + 1]) + cy * (row[i - nx] + row[i + nx]) - brow[i]) * inv_diag;
-    if ((nx - 1 - first) % 2 == 0) relax_cell(op, b, p, nx - 1, j);
+  const int first = (j + colour) % 2;
+  if (!(j > 0 && j < ny - 1) || nx < 3) {
+    for (int i = first; i < nx; i += 2) relax_cell(op, b, p, i, j);
+    return;
   }
+  if (first == 0) relax_cell(op, b, p, 0, j);
+  double* row = p.data() + static_cast<std::size_t>(j) * nx;
+  const double* below = row - nx;
+  const double* above = row + nx;
+  const double* brow = b.data() + static_cast<std::size_t>(j) * nx;
+  for (int i = first == 0 ? 2 : 1; i < nx - 1; i += 2)
+    row[i] = (cx * (row[i - 1] + row[i + 1]) + cy * (below[i] + above[i]) - brow[i]) * inv_diag;
+  if ((nx - 1 - first) % 2 == 0) relax_cell(op, b, p, nx - 1, j);
 }
 
 }  // namespace
 
 void smooth_red_black(const PoissonOperator& op, std::span<const double> b, std::span<double> p, int sweeps) {
+  const int ny = op.ny();
+  const double cx = 1.0 / (op.dx() * op.dx());
+  const double cy = 1.0 / (op.dy() * op.dy());
+  const double inv_diag = 1.0 / (2.0 * cx + 2.0 * cy);
+  const bool periodic_y = op.sides()[2] == PressureBoundary::periodic;
   for (int s = 0; s < sweeps; ++s) {
-    relax_colour(op, b, p, 0);
-    relax_colour(op, b, p, 1);
+    // Plain order for tiny grids, and for an odd periodic y, where rows ny − 1 and 0 touch with
+    // the same colour, so the order inside a colour matters and must stay the plain one.
+    if (ny < 3 || (periodic_y && ny % 2 != 0)) {
+      for (int colour = 0; colour < 2; ++colour)
+        for (int j = 0; j < ny; ++j) relax_row(op, b, p, j, colour, cx, cy, inv_diag);
+      continue;
+    }
+    // Both half-sweeps in one pass over the rows: red row j, then black row j − 1, whose red
+    // neighbours (rows j − 2, j − 1, j) are all new by then. A red row only reads black rows that
+    // are still old, so this is exactly the red half-sweep followed by the black one. With
+    // periodic y, black row 0 reads red row ny − 1 and so comes last.
+    relax_row(op, b, p, 0, 0, cx, cy, inv_diag);
+    for (int j = 1; j < ny; ++j) {
+      relax_row(op, b, p, j, 0, cx, cy, inv_diag);
+      if (j > 1 || !periodic_y) relax_row(op, b, p, j - 1, 1, cx, cy, inv_diag);
+    }
+    relax_row(op, b, p, ny - 1, 1, cx, cy, inv_diag);
+    if (periodic_y) relax_row(op, b, p, 0, 1, cx, cy, inv_diag);
   }
 }
 
@@ -115,7 +139,9 @@ void MultigridSolver::build_levels(const PoissonOperator& op) {
   PoissonOperator current = op;
   while (true) {
     const std::size_t n = static_cast<std::size_t>(current.size());
-    levels_.push_back(Level{current, std::vector<double>(n), std::vector<double>(n), std::vector<double>(n), {}, {}});
+    // The finest level's p is the caller's; its b is used only for singular problems.
+    const std::size_t np = levels_.empty() ? 0 : n;
+    levels_.push_back(Level{current, std::vector<double>(np), std::vector<double>(n), {}, {}});
     const bool can_coarsen = current.nx() % 2 == 0 && current.ny() % 2 == 0 && current.nx() >= 4 &&
                              current.ny() >= 4 && current.size() > kCoarsestCells;
     if (!can_coarsen) break;
@@ -124,45 +150,83 @@ void MultigridSolver::build_levels(const PoissonOperator& op) {
     fine.py = make_prolongation_axis(current.ny(), current.sides()[2], current.sides()[3]);
     current = current.coarsened();
   }
+  factor_coarsest();
 }
 
-void MultigridSolver::v_cycle(std::size_t l) {
+// The coarsest operator as a dense SPD matrix A = −∇² (columns from unit vectors); for the
+// singular (pure Neumann or periodic) problem A + 11ᵀ/n, whose solution for a mean-free right-hand
+// side is the mean-free solution of A p = c.
+void MultigridSolver::factor_coarsest() {
+  const PoissonOperator& op = levels_.back().op;
+  const int n = op.size();
+  coarsest_direct_ = n <= kDirectCoarsestCells;
+  if (!coarsest_direct_) return;
+  Eigen::MatrixXd a(n, n);
+  std::vector<double> unit(static_cast<std::size_t>(n), 0.0), column(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    unit[static_cast<std::size_t>(k)] = 1.0;
+    op.apply(unit, column);
+    for (int r = 0; r < n; ++r) a(r, k) = -column[static_cast<std::size_t>(r)];
+    unit[static_cast<std::size_t>(k)] = 0.0;
+  }
+  if (op.singular()) a.array() += 1.0 / n;
+  coarsest_.compute(a);
+  coarsest_direct_ = coarsest_.info() == Eigen::Success;
+}
+
+void MultigridSolver::solve_coarsest(const Level& level, std::span<double> p, std::span<const double> b) {
+  if (!coarsest_direct_) {
+    conjugate_gradient_poisson(level.op, b, p, 1e-12, 4 * level.op.size() + 50);
+    return;
+  }
+  const auto n = static_cast<Eigen::Index>(p.size());
+  coarse_rhs_.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) coarse_rhs_[k] = -b[static_cast<std::size_t>(k)];  // A p = −b
+  if (level.op.singular()) coarse_rhs_.array() -= coarse_rhs_.mean();
+  coarse_solution_ = coarsest_.solve(coarse_rhs_);
+  for (Eigen::Index k = 0; k < n; ++k) p[static_cast<std::size_t>(k)] = coarse_solution_[k];
+}
+
+void MultigridSolver::v_cycle(std::size_t l, std::span<double> p, std::span<const double> b) {
   Level& level = levels_[l];
   if (l + 1 == levels_.size()) {
-    conjugate_gradient_poisson(level.op, level.b, level.p, 1e-12, 4 * level.op.size() + 50);
+    solve_coarsest(level, p, b);
     return;
   }
   const int smoothing = std::max(1, settings_.multigrid_smoothing);
-  smooth_red_black(level.op, level.b, level.p, smoothing);
-  level.op.residual(level.p, level.b, level.r);
+  smooth_red_black(level.op, b, p, smoothing);
   Level& coarse = levels_[l + 1];
-  restrict_full_weighting(level.r, level.op.nx(), coarse.b, coarse.op.nx(), coarse.op.ny());
+  restrict_residual(level.op, p, b, coarse.b, coarse.op.nx(), coarse.op.ny(), row_);
   if (coarse.op.singular()) remove_mean(coarse.b);
   std::fill(coarse.p.begin(), coarse.p.end(), 0.0);
-  v_cycle(l + 1);
-  prolong_and_add(coarse.p, coarse.op.nx(), level.px, level.py, level.p, level.op.nx(), level.op.ny(), row_);
-  smooth_red_black(level.op, level.b, level.p, smoothing);
+  v_cycle(l + 1, coarse.p, coarse.b);
+  prolong_and_add(coarse.p, coarse.op.nx(), level.px, level.py, p, level.op.nx(), level.op.ny(), row_);
+  smooth_red_black(level.op, b, p, smoothing);
 }
 
 PressureSolveReport MultigridSolver::solve(const PoissonOperator& op, std::span<const double> b,
                                            std::span<double> p) {
   build_levels(op);
-  Level& top = levels_.front();
-  top.b.assign(b.begin(), b.end());
-  if (op.singular()) remove_mean(top.b);
-  top.p.assign(p.begin(), p.end());
+  // The finest level works on the caller's p in place, and on b itself unless the problem is
+  // singular (then on a copy with the mean removed).
+  std::span<const double> rhs = b;
+  if (op.singular()) {
+    Level& top = levels_.front();
+    top.b.assign(b.begin(), b.end());
+    remove_mean(top.b);
+    rhs = top.b;
+  }
   PressureSolveReport report;
-  report.rhs_max = max_abs(top.b);
+  report.rhs_max = max_abs(rhs);
   const double target = std::max(settings_.relative_tolerance * report.rhs_max, settings_.absolute_tolerance);
-  report.residual_max = op.residual_max(top.p, top.b);
+  report.residual_max = op.residual_max(p, rhs);
   while (report.residual_max > target && report.iterations < settings_.max_iterations) {
-    v_cycle(0);
+    v_cycle(0, p, rhs);
     ++report.iterations;
-    report.residual_max = op.residual_max(top.p, top.b);
+    report.residual_max = op.residual_max(p, rhs);
   }
   report.converged = report.residual_max <= target;
-  if (op.singular()) remove_mean(top.p);
-  std::copy(top.p.begin(), top.p.end(), p.begin());
+  if (op.singular()) remove_mean(p);
   return report;
 }
 

@@ -3,9 +3,12 @@
 // Gauss–Seidel smoothing, full-weighting (four-cell average) restriction, bilinear prolongation
 // and conjugate gradients on the coarsest level. Each V-cycle costs O(N) in the number of cells N
 // and reduces the residual by a grid-independent factor, so the whole solve is about linear in N.
-// Grids are coarsened while both cell counts are even; odd counts end the hierarchy early (the
-// coarsest level is then solved by CG, which is correct but costs more).
+// Grids are coarsened while both cell counts are even; odd counts end the hierarchy early. The
+// coarsest level is solved directly (dense Cholesky factorisation, computed once per problem) when
+// it has at most kDirectCoarsestCells cells, else by CG.
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "fluid/poisson.hpp"
 
@@ -30,16 +33,24 @@ class MultigridSolver final : public PressureSolver {
  private:
   struct Level {
     PoissonOperator op;
-    std::vector<double> p, b, r;
+    std::vector<double> p, b;  // coarse levels; the finest uses the caller's arrays
     ProlongationAxis px, py;  // from the next coarser level onto this one
   };
   void build_levels(const PoissonOperator& op);
-  void v_cycle(std::size_t level);
+  void v_cycle(std::size_t level, std::span<double> p, std::span<const double> b);
+  void factor_coarsest();
+  void solve_coarsest(const Level& level, std::span<double> p, std::span<const double> b);
 
   PressureSolverSettings settings_;
+  Eigen::LLT<Eigen::MatrixXd> coarsest_;  // of −∇² (+ 11ᵀ/n when singular) on the coarsest level
+  bool coarsest_direct_ = false;
+  Eigen::VectorXd coarse_rhs_, coarse_solution_;
   std::vector<Level> levels_;
-  std::vector<double> row_;  // prolongation scratch
+  std::vector<double> row_;  // prolongation and restriction scratch
 };
+
+/// Largest coarsest level (cells) solved by a dense factorisation rather than CG.
+inline constexpr int kDirectCoarsestCells = 1024;
 
 /// Red-black Gauss–Seidel sweeps on ∇²p = b.
 void smooth_red_black(const PoissonOperator& op, std::span<const double> b, std::span<double> p, int sweeps);

@@ -44,6 +44,8 @@ class PoissonOperator {
   /// r = b − ∇²p.
   void residual(std::span<const double> p, std::span<const double> b, std::span<double> r) const;
   double residual_max(std::span<const double> p, std::span<const double> b) const;
+  /// Row j of r = b − ∇²p into out[0, nx) (same values as residual()).
+  void residual_row(std::span<const double> p, std::span<const double> b, int j, double* out) const;
   /// Sum of neighbour terms of eq. 4.11 at (i, j), i.e. ∇²p + diagonal·p.
   double neighbour_sum(std::span<const double> p, int i, int j) const;
   double diagonal(int i, int j) const { return x_.diagonal[i] + y_.diagonal[j]; }

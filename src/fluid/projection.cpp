@@ -60,26 +60,80 @@ PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, do
   const std::size_t n = static_cast<std::size_t>(g.cell_count());
   rhs_.resize(n);
   phi_.resize(n);
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
-      rhs_[k] = cell_divergence(state.velocity, i, j) / dt_s;  // eq. 3.3
-      phi_[k] = state.pressure(i, j) / density_kg_per_m3;
+  const double inv_dx = 1.0 / g.dx();
+  const double inv_dy = 1.0 / g.dy();
+  const double inv_dt = 1.0 / dt_s;
+  const double inv_rho = 1.0 / density_kg_per_m3;
+  const Field& u = state.velocity.u;
+  const Field& v = state.velocity.v;
+  // Initial guess φ = p/ρ, or the extrapolation φ_n + (φ_n − φ_{n−1})·Δt/Δt_n when the state's
+  // pressure is still exactly what the last projection stored (nobody edited it) on the same
+  // grid. The extrapolation is written while the pressure is compared; a mismatch redoes the guess.
+  const bool history = extrapolate_ && have_previous_ && last_phi_.size() == n && previous_phi_.size() == n &&
+                       last_dt_s_ > 0.0;
+  const double ratio = history ? dt_s / last_dt_s_ : 0.0;
+  bool unchanged = history;
+  for (int j = 0; j < g.ny; ++j) {
+    const double* ur = u.ptr(0, j);
+    const double* vr = v.ptr(0, j);
+    const double* vn = v.ptr(0, j + 1);
+    const double* pr = state.pressure.ptr(0, j);
+    const std::size_t row = static_cast<std::size_t>(j) * g.nx;
+    double* rhs = rhs_.data() + row;
+    double* phi = phi_.data() + row;
+    for (int i = 0; i < g.nx; ++i) rhs[i] = ((ur[i + 1] - ur[i]) * inv_dx + (vn[i] - vr[i]) * inv_dy) * inv_dt;  // eq. 3.3
+    if (history) {
+      const double* last = last_phi_.data() + row;
+      const double* previous = previous_phi_.data() + row;
+      bool same = true;
+      for (int i = 0; i < g.nx; ++i) {
+        same &= pr[i] == last[i] * density_kg_per_m3;  // as stored below
+        phi[i] = last[i] + (last[i] - previous[i]) * ratio;
+      }
+      unchanged = unchanged && same;
+    } else {
+      for (int i = 0; i < g.nx; ++i) phi[i] = pr[i] * inv_rho;
+    }
+  }
+  if (history && !unchanged)
+    for (int j = 0; j < g.ny; ++j) {
+      const double* pr = state.pressure.ptr(0, j);
+      double* phi = phi_.data() + static_cast<std::size_t>(j) * g.nx;
+      for (int i = 0; i < g.nx; ++i) phi[i] = pr[i] * inv_rho;
     }
   const PressureSolveReport report = solver_->solve(op, rhs_, phi_);
+  // p = ρφ with ghosts, then eq. 4.7: u = u* − Δt ∂φ/∂x = u* − Δt/ρ ∂p/∂x on every face the
+  // pressure acts on (eq. 4.4 differences).
   Field& p = state.pressure;
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) p(i, j) = phi_[static_cast<std::size_t>(j) * g.nx + i];
+  for (int j = 0; j < g.ny; ++j) {
+    const double* phi = phi_.data() + static_cast<std::size_t>(j) * g.nx;
+    double* pr = p.ptr(0, j);
+    for (int i = 0; i < g.nx; ++i) pr[i] = phi[i] * density_kg_per_m3;
+  }
   fill_pressure_ghosts(p, b);
-  // Eq. 4.7: u = u* − Δt ∂φ/∂x on every face the pressure acts on (eq. 4.4 differences).
+  const double gx = dt_s * inv_rho * inv_dx;
+  const double gy = dt_s * inv_rho * inv_dy;
   const FaceRange ru = projected_u_faces(g, b);
-  for (int j = ru.j_begin; j < ru.j_end; ++j)
-    for (int i = ru.i_begin; i < ru.i_end; ++i) state.velocity.u(i, j) -= dt_s * (p(i, j) - p(i - 1, j)) / g.dx();
+  for (int j = ru.j_begin; j < ru.j_end; ++j) {
+    const double* pr = p.ptr(0, j);
+    double* ur = state.velocity.u.ptr(0, j);
+    for (int i = ru.i_begin; i < ru.i_end; ++i) ur[i] -= gx * (pr[i] - pr[i - 1]);
+  }
   const FaceRange rv = projected_v_faces(g, b);
-  for (int j = rv.j_begin; j < rv.j_end; ++j)
-    for (int i = rv.i_begin; i < rv.i_end; ++i) state.velocity.v(i, j) -= dt_s * (p(i, j) - p(i, j - 1)) / g.dy();
+  for (int j = rv.j_begin; j < rv.j_end; ++j) {
+    const double* pr = p.ptr(0, j);
+    const double* ps = p.ptr(0, j - 1);
+    double* vr = state.velocity.v.ptr(0, j);
+    for (int i = rv.i_begin; i < rv.i_end; ++i) vr[i] -= gy * (pr[i] - ps[i]);
+  }
   refresh_velocity_ghosts(state.velocity, b);
-  for (double& x : p.raw()) x *= density_kg_per_m3;
+  if (extrapolate_) {  // keep φ_n and φ_{n−1} for the next guess (buffers rotate, no copy)
+    std::swap(previous_phi_, last_phi_);
+    std::swap(last_phi_, phi_);
+    have_previous_ = have_last_ && previous_phi_.size() == n;
+    have_last_ = true;
+    last_dt_s_ = dt_s;
+  }
   return report;
 }
 

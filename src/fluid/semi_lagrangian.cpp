@@ -1,7 +1,12 @@
 #include "fluid/semi_lagrangian.hpp"
 
+#include "fluid/double2.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
+#include <span>
 
 
 namespace jellysim::fluid {
@@ -28,7 +33,192 @@ Vec2 back_trace(const Velocity& vel, const Boundaries& b, Vec2 x, Vec2 velocity_
   return confine_to_domain(g, b, x - dt_s * vel.sample(midpoint));
 }
 
+namespace {
+
+// Two faces at a time (double2.hpp): the same bits as the scalar formulas.
+using simd::Double2;
+using simd::Int2;
+using simd::load2;
+using simd::store2;
+
+// Bilinear interpolation of a field (base = sample (0, 0), row stride) at continuous sample
+// indices (fx, fy) of two points. The caller guarantees −1 ≤ fx < count_x and −1 ≤ fy < count_y
+// (true for every point confined to the domain), so unlike Field::sample there is no clamping;
+// same weights and operation order as Field::sample.
+inline Double2 bilinear2(const double* base, int stride, Double2 fx, Double2 fy) {
+  // floor(f) = trunc(f + 1) − 1 as f ≥ −1; the flat index j0·stride + i0 is computed exactly in
+  // doubles and converted once.
+  const Double2 i0 = __builtin_convertvector(__builtin_convertvector(fx + 1.0, Int2), Double2) - 1.0;
+  const Double2 j0 = __builtin_convertvector(__builtin_convertvector(fy + 1.0, Int2), Double2) - 1.0;
+  const Double2 tx = fx - i0;
+  const Double2 ty = fy - j0;
+  const Int2 k = __builtin_convertvector(j0 * static_cast<double>(stride) + i0, Int2);
+  const double* a = base + k[0];
+  const double* b = base + k[1];
+  const Double2 q00{a[0], b[0]}, q01{a[1], b[1]}, q10{a[stride], b[stride]}, q11{a[stride + 1], b[stride + 1]};
+  const Double2 bottom = (1.0 - tx) * q00 + tx * q01;
+  const Double2 top = (1.0 - tx) * q10 + tx * q11;
+  return (1.0 - ty) * bottom + ty * top;
+}
+
+inline bool inside_axis(double x, double n) { return x >= 0.0 && x <= n; }
+// Periodic wrap of a point more than a period away (Δt·|u| above the domain size), or NaN → 0.
+inline double wrap_far(double x, double n) {
+  if (inside_axis(x, n)) return x;
+  x = std::fmod(x, n);
+  if (x < 0.0) x += n;
+  return inside_axis(x, n) ? x : 0.0;
+}
+
+// confine_to_domain along one axis in grid coordinates (cells), for two points: clamp onto
+// [0, n], or wrap by whole periods on a periodic axis. A NaN coordinate goes to 0, which keeps
+// the sample indices in range.
+template <bool Periodic, bool Confine = true>
+inline Double2 confine2(Double2 x, double n) {
+  if constexpr (!Confine) {
+    (void)n;
+    return x;
+  } else if constexpr (!Periodic) {
+    x = x > 0.0 ? x : 0.0;  // branch-free max/min; NaN → 0
+    return x < n ? x : n;
+  } else {
+    x = x < 0.0 ? x + n : x;  // within one period: branch-free
+    x = x > n ? x - n : x;
+    if (!(inside_axis(x[0], n) && inside_axis(x[1], n))) [[unlikely]] {
+      x[0] = wrap_far(x[0], n);
+      x[1] = wrap_far(x[1], n);
+    }
+    return x;
+  }
+}
+
+// max |value| over every stored sample (ghosts included); NaN if a sample is NaN or infinite.
+double max_abs_stored(const Field& f) {
+  const std::span<const double> x = f.raw();
+  simd::Max4 m;
+  Double2 non_finite{0.0, 0.0};  // stays 0 unless some x·0 is NaN
+  std::size_t k = 0;
+  for (; k + 4 <= x.size(); k += 4) {
+    const Double2 a = load2(x.data() + k);
+    const Double2 b = load2(x.data() + k + 2);
+    m.a = simd::max2(m.a, simd::abs2(a));
+    m.b = simd::max2(m.b, simd::abs2(b));
+    non_finite += a * 0.0 + b * 0.0;
+  }
+  double result = m.total();
+  double tail = non_finite[0] + non_finite[1];
+  for (; k < x.size(); ++k) {
+    result = std::max(result, std::abs(x[k]));
+    tail += x[k] * 0.0;
+  }
+  return tail == 0.0 ? result : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Advects one component (0: u on x-faces, 1: v on y-faces) over the faces of `r`. Positions are
+// in grid coordinates (cells from the origin corner); the sample indices of u are (x, y − ½), of
+// v (x − ½, y). Midpoint back-trace as back_trace(): x − Δt·u(x − ½Δt·u(x)).
+// Each row is done in chunks of kChunk faces and three passes (midpoints; velocity there and end
+// points; final sample), two faces at a time; the independent faces of a pass overlap in the CPU
+// instead of each face waiting on its own chain of three dependent interpolations. An odd face
+// count is padded with the next face (its inputs are stored samples or ghosts; its result is
+// dropped).
+template <int Component, bool PeriodicX, bool PeriodicY>
+void advect_component(const Velocity& src, double ax, double ay, double reach_x, double reach_y, const FaceRange& r,
+                      Field& dst) {
+  constexpr int kChunk = 128;
+  constexpr double sx = Component == 0 ? 0.0 : 0.5;  // staggering of the component
+  constexpr double sy = Component == 0 ? 0.5 : 0.0;
+  const MacGrid& g = src.u.grid();
+  const double nx = g.nx;
+  const double ny = g.ny;
+  const double* U = src.u.ptr(0, 0);
+  const double* V = src.v.ptr(0, 0);
+  const int su = static_cast<int>(src.u.stride());
+  const int sv = static_cast<int>(src.v.stride());
+  const double* F = Component == 0 ? U : V;
+  const int sf = Component == 0 ? su : sv;
+  const double half_ax = 0.5 * ax;
+  const double half_ay = 0.5 * ay;
+  const Double2 lane{0.0, 1.0};
+  alignas(16) double px[kChunk], py[kChunk];
+  for (int j = r.j_begin; j < r.j_end; ++j) {
+    const double gy = j + sy;
+    double* out = dst.ptr(0, j);
+    // Velocity at the faces of row j: the component itself and the average of the other one's
+    // four surrounding faces (velocity_at_u_face / velocity_at_v_face).
+    const double* own = Component == 0 ? src.u.ptr(0, j) : src.v.ptr(0, j);
+    const double* o0 = Component == 0 ? src.v.ptr(-1, j) : src.u.ptr(0, j - 1);
+    const double* o1 = Component == 0 ? src.v.ptr(-1, j + 1) : src.u.ptr(0, j);
+    auto chunk = [&]<bool Confine>(int c0, int n) {
+      for (int k = 0; k < n; k += 2) {  // pass 1: midpoints x − ½Δt·u(x)
+        const int i = c0 + k;
+        const Double2 other = 0.25 * (load2(o0 + i) + load2(o0 + i + 1) + load2(o1 + i) + load2(o1 + i + 1));
+        const Double2 uf = Component == 0 ? load2(own + i) : other;
+        const Double2 vf = Component == 0 ? other : load2(own + i);
+        const Double2 gx = (i + sx) + lane;
+        store2(px + k, confine2<PeriodicX, Confine>(gx - half_ax * uf, nx));
+        store2(py + k, confine2<PeriodicY, Confine>(gy - half_ay * vf, ny));
+      }
+      for (int k = 0; k < n; k += 2) {  // pass 2: end points x − Δt·u(midpoint)
+        const Double2 x = load2(px + k);
+        const Double2 y = load2(py + k);
+        const Double2 um = bilinear2(U, su, x, y - 0.5);
+        const Double2 vm = bilinear2(V, sv, x - 0.5, y);
+        const Double2 gx = (c0 + k + sx) + lane;
+        store2(px + k, confine2<PeriodicX, Confine>(gx - ax * um, nx));
+        store2(py + k, confine2<PeriodicY, Confine>(gy - ay * vm, ny));
+      }
+      int k = 0;
+      for (; k + 2 <= n; k += 2)  // pass 3: the component at the end points
+        store2(out + c0 + k, bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy));
+      if (k < n) out[c0 + k] = bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy)[0];
+    };
+    // A chunk whose faces lie at least reach_x (reach_y) cells inside the domain cannot trace
+    // back out of it (|velocity| ≤ the field's max), so it needs no clamping or wrapping.
+    // Faces [safe_begin, safe_end) of a row with row_inside qualify (a face at x needs
+    // x − reach ≥ 0 and x + reach ≤ n; the end leaves room for the padding face of a pair).
+    const bool row_inside = gy - reach_y >= 0.0 && gy + reach_y <= ny;
+    int safe_begin = r.i_end, safe_end = r.i_end;
+    if (row_inside && reach_x < nx) {
+      safe_begin = std::clamp(static_cast<int>(std::ceil(reach_x - sx)), r.i_begin, r.i_end);
+      safe_end = std::clamp(static_cast<int>(std::floor(nx - reach_x - sx)) - 1, safe_begin, r.i_end);
+    }
+    auto run = [&]<bool Confine>(int from, int to) {
+      for (int c0 = from; c0 < to; c0 += kChunk) chunk.template operator()<Confine>(c0, std::min(kChunk, to - c0));
+    };
+    run.template operator()<true>(r.i_begin, safe_begin);
+    run.template operator()<false>(safe_begin, safe_end);
+    run.template operator()<true>(safe_end, r.i_end);
+  }
+}
+
+template <bool PeriodicX, bool PeriodicY>
+void advect_both(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
+  const MacGrid& g = src.u.grid();
+  const double ax = dt_s / g.dx();  // cells per (m/s) of velocity
+  const double ay = dt_s / g.dy();
+  // Largest distance (cells) a back-trace can move; NaN (a non-finite velocity) makes every
+  // "inside" test false, so every chunk is then confined.
+  const double reach_x = ax * max_abs_stored(src.u);
+  const double reach_y = ay * max_abs_stored(src.v);
+  advect_component<0, PeriodicX, PeriodicY>(src, ax, ay, reach_x, reach_y, interior_u_faces(g, b), dst.u);
+  advect_component<1, PeriodicX, PeriodicY>(src, ax, ay, reach_x, reach_y, interior_v_faces(g, b), dst.v);
+}
+
+}  // namespace
+
 void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
+  if (b.periodic_x()) {
+    if (b.periodic_y()) advect_both<true, true>(src, b, dt_s, dst);
+    else advect_both<true, false>(src, b, dt_s, dst);
+  } else {
+    if (b.periodic_y()) advect_both<false, true>(src, b, dt_s, dst);
+    else advect_both<false, false>(src, b, dt_s, dst);
+  }
+  apply_velocity_boundaries(dst, b);
+}
+
+void advect_velocity_reference(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
   const MacGrid& g = src.u.grid();
   const double dx = g.dx();
   const double dy = g.dy();
@@ -65,95 +255,145 @@ void for_interior_rows(const MacGrid& g, const Boundaries& b, Fn&& fn) {
 inline Field& component(Velocity& v, int c) { return c == 0 ? v.u : v.v; }
 inline const Field& component(const Velocity& v, int c) { return c == 0 ? v.u : v.v; }
 
-double dot(const MacGrid& g, const Boundaries& b, const Velocity& x, const Velocity& y) {
-  double s = 0.0;
-  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-    const double* xr = component(x, c).ptr(0, j);
-    const double* yr = component(y, c).ptr(0, j);
-    for (int i = i0; i < i1; ++i) s += xr[i] * yr[i];
-  });
-  return s;
-}
-
-double max_interior(const MacGrid& g, const Boundaries& b, const Velocity& x) {
-  double m = 0.0;
-  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-    const double* xr = component(x, c).ptr(0, j);
-    for (int i = i0; i < i1; ++i) m = std::max(m, std::abs(xr[i]));
-  });
-  return m;
-}
-
-// y += a·x on the interior faces.
-void axpy(const MacGrid& g, const Boundaries& b, double a, const Velocity& x, Velocity& y) {
-  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-    const double* xr = component(x, c).ptr(0, j);
-    double* yr = component(y, c).ptr(0, j);
-    for (int i = i0; i < i1; ++i) yr[i] += a * xr[i];
-  });
-}
-
-// out = x − νΔt ∇²x on the interior faces, with the boundary values of `b` put into x first.
-void apply_helmholtz(Velocity& x, const Boundaries& b, double nu_dt, Velocity& out) {
-  apply_velocity_boundaries(x, b);
-  const MacGrid& g = x.u.grid();
-  const double cx = nu_dt / (g.dx() * g.dx());
-  const double cy = nu_dt / (g.dy() * g.dy());
-  const double centre = 1.0 + 2.0 * cx + 2.0 * cy;
-  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-    const Field& f = component(x, c);
-    const double* xr = f.ptr(0, j);
-    const double* below = f.ptr(0, j - 1);
-    const double* above = f.ptr(0, j + 1);
-    double* o = component(out, c).ptr(0, j);
-    for (int i = i0; i < i1; ++i)
-      o[i] = centre * xr[i] - cx * (xr[i - 1] + xr[i + 1]) - cy * (below[i] + above[i]);
-  });
-}
+struct HelmholtzCoefficients {
+  double cx, cy, centre;
+  HelmholtzCoefficients(const MacGrid& g, double nu_dt)
+      : cx(nu_dt / (g.dx() * g.dx())), cy(nu_dt / (g.dy() * g.dy())), centre(1.0 + 2.0 * cx + 2.0 * cy) {}
+  // (I − νΔt∇²)x at x[i], with the rows below and above; one value or a pair.
+  double apply(const double* x, const double* below, const double* above, int i) const {
+    return centre * x[i] - cx * (x[i - 1] + x[i + 1]) - cy * (below[i] + above[i]);
+  }
+  Double2 apply2(const double* x, const double* below, const double* above, int i) const {
+    return centre * load2(x + i) - cx * (load2(x + i - 1) + load2(x + i + 1)) -
+           cy * (load2(below + i) + load2(above + i));
+  }
+};
 
 }  // namespace
 
-ImplicitDiffusion::ImplicitDiffusion(const MacGrid& g) : r_(g), d_(g), q_(g), e_(g) {}
+ImplicitDiffusion::ImplicitDiffusion(const MacGrid& g) : r_(g), d_(g) {}
 
 int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
                              int max_iterations) {
+  using simd::abs2;
+  using simd::for_quads;
+  using simd::max2;
   if (nu_dt_m2 <= 0.0) return 0;
   const MacGrid& g = vel.u.grid();
   const Boundaries zero = b.homogeneous();
-  // Correction e with homogeneous boundaries: (I − νΔt∇²)e = u − (I − νΔt∇²)u = r.
-  apply_helmholtz(vel, b, nu_dt_m2, q_);
+  const HelmholtzCoefficients h(g, nu_dt_m2);
+  // Conjugate gradients for the correction e (homogeneous boundary values) of
+  // (I − νΔt∇²)e = u − (I − νΔt∇²)u = r, added to u as it is found. Only r, d and u are stored
+  // (A·d is recomputed where needed instead of kept), so that the solve streams three arrays;
+  // two faces at a time, reductions with four partial results in a fixed order.
+  // Pass 0: r = d = u − (I − νΔt∇²)u, with max|u|, max|r| and r·r.
+  apply_velocity_boundaries(vel, b);
+  simd::Max4 vel_max, r_max;
+  simd::Sum4 rr_sum;
   for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-    const double* u = component(vel, c).ptr(0, j);
-    const double* q = component(q_, c).ptr(0, j);
+    const Field& f = component(vel, c);
+    const double* u = f.ptr(0, j);
+    const double* below = f.ptr(0, j - 1);
+    const double* above = f.ptr(0, j + 1);
     double* r = component(r_, c).ptr(0, j);
-    double* e = component(e_, c).ptr(0, j);
-    for (int i = i0; i < i1; ++i) {
-      r[i] = u[i] - q[i];
-      e[i] = 0.0;
-    }
+    double* d = component(d_, c).ptr(0, j);
+    auto pair = [&](int i, Double2& um, Double2& rm, Double2& rs) {
+      const Double2 ui = load2(u + i);
+      const Double2 ri = ui - h.apply2(u, below, above, i);
+      store2(r + i, ri);
+      store2(d + i, ri);
+      um = max2(um, abs2(ui));
+      rm = max2(rm, abs2(ri));
+      rs += ri * ri;
+    };
+    for_quads(
+        i0, i1,
+        [&](int i) {
+          pair(i, vel_max.a, r_max.a, rr_sum.a);
+          pair(i + 2, vel_max.b, r_max.b, rr_sum.b);
+        },
+        [&](int i) { pair(i, vel_max.a, r_max.a, rr_sum.a); },
+        [&](int i) {
+          const double ri = u[i] - h.apply(u, below, above, i);
+          r[i] = ri;
+          d[i] = ri;
+          vel_max.a[0] = std::max(vel_max.a[0], std::abs(u[i]));
+          r_max.a[0] = std::max(r_max.a[0], std::abs(ri));
+          rr_sum.a[0] += ri * ri;
+        });
   });
-  const double scale = std::max(max_interior(g, b, vel), max_interior(g, b, r_));
+  const double scale = std::max(vel_max.total(), r_max.total());
   const double target = relative_tolerance * scale;
-  d_ = r_;
-  double rr = dot(g, b, r_, r_);
+  double rr = rr_sum.total();
+  double residual_max = r_max.total();
+  // The max-norm stopping test uses the residual max taken in the pass that updates r.
   int it = 0;
-  for (; it < max_iterations && max_interior(g, b, r_) > target; ++it) {
-    apply_helmholtz(d_, zero, nu_dt_m2, q_);
-    const double dq = dot(g, b, d_, q_);
+  for (; it < max_iterations && residual_max > target; ++it) {
+    apply_velocity_boundaries(d_, zero);
+    simd::Sum4 dq_sum;  // pass 1: d·Ad
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+      const Field& f = component(d_, c);
+      const double* d = f.ptr(0, j);
+      const double* below = f.ptr(0, j - 1);
+      const double* above = f.ptr(0, j + 1);
+      for_quads(
+          i0, i1,
+          [&](int i) {
+            dq_sum.a += load2(d + i) * h.apply2(d, below, above, i);
+            dq_sum.b += load2(d + i + 2) * h.apply2(d, below, above, i + 2);
+          },
+          [&](int i) { dq_sum.a += load2(d + i) * h.apply2(d, below, above, i); },
+          [&](int i) { dq_sum.a[0] += d[i] * h.apply(d, below, above, i); });
+    });
+    const double dq = dq_sum.total();
     if (!(dq > 0.0)) break;
     const double alpha = rr / dq;
-    axpy(g, b, alpha, d_, e_);
-    axpy(g, b, -alpha, q_, r_);
-    const double rr_new = dot(g, b, r_, r_);
+    simd::Sum4 rr_new_sum;  // pass 2: u += α d, r −= α Ad, r·r and max|r|
+    simd::Max4 r_new_max;
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+      const Field& f = component(d_, c);
+      const double* d = f.ptr(0, j);
+      const double* below = f.ptr(0, j - 1);
+      const double* above = f.ptr(0, j + 1);
+      double* r = component(r_, c).ptr(0, j);
+      double* u = component(vel, c).ptr(0, j);
+      auto pair = [&](int i, Double2& rs, Double2& rm) {
+        store2(u + i, load2(u + i) + alpha * load2(d + i));
+        const Double2 ri = load2(r + i) - alpha * h.apply2(d, below, above, i);
+        store2(r + i, ri);
+        rs += ri * ri;
+        rm = max2(rm, abs2(ri));
+      };
+      for_quads(
+          i0, i1,
+          [&](int i) {
+            pair(i, rr_new_sum.a, r_new_max.a);
+            pair(i + 2, rr_new_sum.b, r_new_max.b);
+          },
+          [&](int i) { pair(i, rr_new_sum.a, r_new_max.a); },
+          [&](int i) {
+            u[i] += alpha * d[i];
+            const double ri = r[i] - alpha * h.apply(d, below, above, i);
+            r[i] = ri;
+            rr_new_sum.a[0] += ri * ri;
+            r_new_max.a[0] = std::max(r_new_max.a[0], std::abs(ri));
+          });
+    });
+    const double rr_new = rr_new_sum.total();
+    residual_max = r_new_max.total();
+    if (!(rr_new == rr_new)) break;  // NaN: give up rather than run to max_iterations
+    if (!(residual_max > target)) {  // converged: the next direction is not needed
+      ++it;
+      break;
+    }
     const double beta = rr_new / rr;
     rr = rr_new;
-    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {  // pass 3: d = r + β d
       const double* r = component(r_, c).ptr(0, j);
       double* d = component(d_, c).ptr(0, j);
       for (int i = i0; i < i1; ++i) d[i] = r[i] + beta * d[i];
     });
   }
-  axpy(g, b, 1.0, e_, vel);
   apply_velocity_boundaries(vel, b);
   return it;
 }

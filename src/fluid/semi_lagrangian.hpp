@@ -30,10 +30,18 @@ Vec2 back_trace(const Velocity& vel, const Boundaries& b, Vec2 x, Vec2 velocity_
 /// Semi-Lagrangian advection of the velocity by itself (§4.2.4 step 3, with the sign of the
 /// back-trace corrected: u_c(x) = u_b(x − Δt u_b)). `src` must have filled ghosts; the interior
 /// faces of `dst` are overwritten and its boundaries applied.
+/// Works row by row in grid coordinates with the bilinear weights computed in place (no
+/// per-sample clamping of the stored range: a confined point always lies inside it); equals
+/// advect_velocity_reference up to round-off (the positions are computed in cells, not metres).
 void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
+/// The same advection written point by point with back_trace() and Field::sample() in world
+/// coordinates; the reference for tests and benchmarks.
+void advect_velocity_reference(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
 
 /// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate
 /// gradients on the interior faces with the boundary values of `b`; keeps its work vectors.
+/// Stops when the max-norm of the CG residual is at most relative_tolerance · max(max|u|, max|r₀|)
+/// (the max is taken in the same pass that updates the residual).
 class ImplicitDiffusion {
  public:
   explicit ImplicitDiffusion(const MacGrid& g);
@@ -42,7 +50,7 @@ class ImplicitDiffusion {
             int max_iterations = 2000);
 
  private:
-  Velocity r_, d_, q_, e_;
+  Velocity r_, d_;
 };
 
 /// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate

@@ -23,8 +23,14 @@ StepReport SemiLagrangianSolver::step(double dt_s) {
   report.diffusion_iterations = diffusion_.solve(                              // step 2, eq. 4.17
       vel, b, settings_.viscosity_m2_per_s * dt_s, settings_.diffusion_tolerance);
   apply_velocity_boundaries(vel, b);
-  if (settings_.project_before_advection) project(dt_s);                      // §4.2.4 remark
-  advected_ = vel;
+  if (settings_.project_before_advection) {                                   // §4.2.4 remark
+    // Two projections of different fields per step: no extrapolation across them.
+    projector_.reset_history();
+    project(dt_s);
+    projector_.reset_history();
+  }
+  // advect_velocity writes every interior face of advected_ and then all boundary values and
+  // ghosts, so advected_ needs no copy of vel first.
   advect_velocity(vel, b, dt_s, advected_);                                   // step 3
   std::swap(vel, advected_);
   report.pressure = project(dt_s);                                            // step 4, eq. 4.14

@@ -66,15 +66,19 @@ void assign_checked(toml::table& base, std::string_view key, const toml::node& e
   value.visit([&](const auto& v) { base.insert_or_assign(key, v); });
 }
 
-void merge_table(toml::table& base, const toml::table& overlay, const std::string& prefix) {
+void merge_table(toml::table& base, const toml::table& overlay, const std::string& prefix, bool allow_new = false) {
   for (auto&& [k, v] : overlay) {
     const std::string path = join_key(prefix, k.str());
     toml::node* existing = base.get(k.str());
     if (existing == nullptr) {
+      if (allow_new) {
+        base.insert(k.str(), v);
+        continue;
+      }
       throw InputError("unknown field '" + path + "' (allowed here: " + allowed_keys(base) + ")");
     }
     if (existing->is_table() && v.is_table()) {
-      merge_table(*existing->as_table(), *v.as_table(), path);
+      merge_table(*existing->as_table(), *v.as_table(), path, allow_new);
     } else {
       assign_checked(base, k.str(), *existing, v, path);
     }
@@ -170,6 +174,14 @@ Config Config::load(const std::filesystem::path& path) {
 void Config::merge(const Config& overlay) {
   try {
     merge_table(impl_->table, overlay.impl_->table, "");
+  } catch (const InputError& e) {
+    throw InputError(overlay.impl_->source + ": " + e.what());
+  }
+}
+
+void Config::extend(const Config& overlay) {
+  try {
+    merge_table(impl_->table, overlay.impl_->table, "", true);
   } catch (const InputError& e) {
     throw InputError(overlay.impl_->source + ": " + e.what());
   }

@@ -48,6 +48,9 @@ class Config {
   /// Overlays every field of `overlay` onto this configuration. Fields must exist here and have
   /// the same type (an integer is accepted where a float is expected).
   void merge(const Config& overlay);
+  /// Like merge, but fields absent here are added (builds an experiment's schema from a base scene
+  /// plus the experiment's own fields). Existing fields keep their type checks.
+  void extend(const Config& overlay);
   /// Applies one `key=value` override; the value is read as a TOML value (number, boolean,
   /// string with or without quotes, or array such as [0, -0.05]).
   void set(std::string_view assignment);

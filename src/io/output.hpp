@@ -33,6 +33,15 @@ class OutputDir {
   std::filesystem::path dir_;
 };
 
+/// Writes `name` atomically through a writer that needs a path (image and VTK libraries):
+/// writer(temporary path), then the temporary is renamed into place.
+template <class Writer>
+void write_via_temporary(const OutputDir& out, const std::string& name, Writer&& writer) {
+  const auto tmp = out.temporary_for(name);
+  writer(tmp);
+  out.commit(tmp, name);
+}
+
 /// Builds a CSV file row by row with a fixed header; numbers use the shortest text that reads back
 /// to the same double (std::to_chars), so files are byte-identical across runs.
 class CsvWriter {

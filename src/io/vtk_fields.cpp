@@ -106,6 +106,30 @@ void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>
   check_written(out, path);
 }
 
+void write_lines_vtp(std::ostream& out, const std::vector<Vec2>& points_m, const std::vector<std::array<int, 2>>& lines) {
+  const PrecisionGuard precision(out);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << points_m.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << lines.size()
+      << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+      << "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const Vec2& p : points_m) out << "          " << p.x << ' ' << p.y << " 0\n";
+  out << "        </DataArray>\n      </Points>\n      <Lines>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
+  for (const auto& l : lines) out << ' ' << l[0] << ' ' << l[1];
+  out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
+  for (std::size_t k = 1; k <= lines.size(); ++k) out << ' ' << 2 * k;
+  out << "\n        </DataArray>\n      </Lines>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+}
+
+void write_lines_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m,
+                     const std::vector<std::array<int, 2>>& lines) {
+  std::ofstream out = open_for_writing(path);
+  write_lines_vtp(out, points_m, lines);
+  check_written(out, path);
+}
+
 void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries) {
   const PrecisionGuard precision(out);
   out << "<?xml version=\"1.0\"?>\n"

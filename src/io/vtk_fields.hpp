@@ -3,6 +3,7 @@
 // cell-centred arrays, tracer particles as XML PolyData (.vtp), and a .pvd collection that ties
 // the frames into a time series. Writers take a stream or a path; writing atomically (temp file +
 // rename) is the caller's job.
+#include <array>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -20,6 +21,11 @@ void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& s
 /// Writes points (z = 0) as VTK XML PolyData vertices.
 void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m);
 void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m);
+
+/// Writes points (z = 0) joined by line segments (e.g. the springs of a body) as VTK XML PolyData.
+void write_lines_vtp(std::ostream& out, const std::vector<Vec2>& points_m, const std::vector<std::array<int, 2>>& lines);
+void write_lines_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m,
+                     const std::vector<std::array<int, 2>>& lines);
 
 /// One dataset of a time series: simulated time and the file name relative to the .pvd file.
 struct PvdEntry {

@@ -91,6 +91,14 @@ void draw_tracers(plstream& pls, const std::vector<Vec2>& tracers) {
   pls.ssym(0, 1.0);
 }
 
+void draw_segments(plstream& pls, const std::vector<std::array<Vec2, 2>>& segments, int colour, double width) {
+  if (segments.empty()) return;
+  pls.col0(colour);
+  pls.width(width);
+  for (const auto& s : segments) pls.join(s[0].x, s[0].y, s[1].x, s[1].y);
+  pls.width(1.0);
+}
+
 std::string range_caption(FieldQuantity q, double range_max) {
   char text[96];
   if (q == FieldQuantity::speed) std::snprintf(text, sizeof text, "speed 0 - %.3g m/s", range_max);
@@ -106,10 +114,17 @@ void draw_panel(plstream& pls, const FieldPicture& panel, const FieldPictureOpti
   double range_max = options.colour_range_max;
   if (range_max <= 0.0) range_max = std::max(f.max_abs_interior(), 1e-12);
   pls.col0(1);
-  pls.env(g.origin_m.x, g.origin_m.x + g.width_m, g.origin_m.y, g.origin_m.y + g.height_m, 1, 0);
+  if (panel.view_m) {
+    const auto& v = *panel.view_m;
+    pls.env(v[0].x, v[1].x, v[0].y, v[1].y, 1, 0);
+  } else {
+    pls.env(g.origin_m.x, g.origin_m.x + g.width_m, g.origin_m.y, g.origin_m.y + g.height_m, 1, 0);
+  }
   draw_image(pls, f, options.quantity, range_max);
   if (options.arrows) draw_arrows(pls, s, options.arrows_per_side);
   draw_tracers(pls, panel.tracers_m);
+  draw_segments(pls, panel.thin_segments_m, 3, 1.0);
+  draw_segments(pls, panel.segments_m, 1, 2.5);
   pls.col0(1);
   pls.box("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
   pls.lab("x (m)", "y (m)", (panel.caption + "  [" + range_caption(options.quantity, range_max) + "]").c_str());
@@ -129,6 +144,7 @@ void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns
   pls.scol0(0, 255, 255, 255);  // background
   pls.scol0(1, 20, 20, 20);     // axes, arrows
   pls.scol0(2, 230, 30, 160);   // tracers
+  pls.scol0(3, 30, 110, 240);   // thin segments (muscles)
   pls.ssub(columns, rows);
   pls.init();
   set_colour_map(pls, options.quantity);

@@ -1,7 +1,9 @@
 #pragma once
 // PNG pictures of grid-fluid fields for a person to look at: speed or vorticity as a colour image
 // with velocity arrows and tracer particles on top (PLplot, pngcairo device). Output code only.
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct FieldPicture {
   const fluid::FlowState* state = nullptr;
   std::string caption;
   std::vector<Vec2> tracers_m;  ///< drawn as dots
+  std::vector<std::array<Vec2, 2>> segments_m;        ///< e.g. springs of an immersed body, drawn as lines
+  std::vector<std::array<Vec2, 2>> thin_segments_m;   ///< e.g. muscle springs, drawn thinner in another colour
+  std::optional<std::array<Vec2, 2>> view_m;          ///< lower-left and upper-right corner to show (zoom)
 };
 
 struct FieldPictureOptions {

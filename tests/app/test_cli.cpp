@@ -3,79 +3,52 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <sys/wait.h>
+#include "../cli_runner.hpp"
+
+namespace cli = jellysim::testing;
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
+using Result = cli::CliResult;
 
-Result jellysim(const std::string& args) {
-  const std::string cmd = std::string(JELLYSIM_CLI_PATH) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe) != nullptr) r.output += buf.data();
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("jellysim_cli_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
+Result run_cli(const std::string& args) { return cli::run_jellysim(args); }
+std::string read_file(const fs::path& p) { return cli::read_text_file(p); }
+fs::path fresh_dir(const std::string& name) { return cli::fresh_scratch_dir("cli_" + name); }
 
 nlohmann::json summary_of(const fs::path& dir) { return nlohmann::json::parse(read_file(dir / "summary.json")); }
 
 }  // namespace
 
 TEST(Cli, HelpDocumentsCommands) {
-  const Result r = jellysim("--help");
+  const Result r = run_cli("--help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* word : {"run", "experiment", "scenes"}) EXPECT_NE(r.output.find(word), std::string::npos) << word;
-  const Result sub = jellysim("run --help");
+  const Result sub = run_cli("run --help");
   EXPECT_EQ(sub.exit_code, 0);
   for (const char* word : {"--out", "--set", "--duration"}) EXPECT_NE(sub.output.find(word), std::string::npos);
 }
 
 TEST(Cli, BadUsageExitsTwo) {
-  EXPECT_EQ(jellysim("").exit_code, 2);
-  EXPECT_EQ(jellysim("frobnicate").exit_code, 2);
-  const Result r = jellysim("experiment no-such-thing --out " + fresh_dir("unknown").string());
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+  const Result r = run_cli("experiment no-such-thing --out " + fresh_dir("unknown").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("swinging-bar"), std::string::npos) << r.output;  // lists known names
 }
 
 TEST(Cli, BadSetValueNamesFieldAndLeavesNoOutput) {
   const fs::path dir = fresh_dir("bad_set");
-  Result r = jellysim("run --quiet --out " + dir.string() + " --set bar.point_mass=-1");
+  Result r = run_cli("experiment swinging-bar --quiet --out " + dir.string() + " --set bar.point_mass=-1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bar.point_mass"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("out of range"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
-  r = jellysim("run --quiet --out " + dir.string() + " --set time.integrator=rk7");
+  r = run_cli("experiment swinging-bar --quiet --out " + dir.string() + " --set time.integrator=rk7");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("dopri5"), std::string::npos) << r.output;  // lists the allowed values
-  r = jellysim("run --quiet --out " + dir.string() + " --duration -3");
+  r = run_cli("run --quiet --out " + dir.string() + " --duration -3");  // the default (jellyfish) scene
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("duration"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
@@ -86,15 +59,15 @@ TEST(Cli, BadSceneFileNamesFieldAndLeavesNoOutput) {
   fs::create_directories(dir);
   const fs::path scene = dir / "scene.toml";
   std::ofstream(scene) << "scene = \"swinging-bar\"\n[bar]\nsegmnets = 4\n";
-  Result r = jellysim("run --quiet " + scene.string() + " --out " + (dir / "out").string());
+  Result r = run_cli("run --quiet " + scene.string() + " --out " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bar.segmnets"), std::string::npos) << r.output;
   std::ofstream(scene) << "scene = \"swinging-bar\"\n[bar]\nsegments = \"many\"\n";
-  r = jellysim("run --quiet " + scene.string() + " --out " + (dir / "out").string());
+  r = run_cli("run --quiet " + scene.string() + " --out " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bar.segments"), std::string::npos) << r.output;
   std::ofstream(scene) << "scene = \"swinging-bar\"\n[bar\n";
-  r = jellysim("run --quiet " + scene.string() + " --out " + (dir / "out").string());
+  r = run_cli("run --quiet " + scene.string() + " --out " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("scene.toml:"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
@@ -103,7 +76,7 @@ TEST(Cli, BadSceneFileNamesFieldAndLeavesNoOutput) {
 
 TEST(Cli, SwingingBarWritesItsOutputs) {
   const fs::path dir = fresh_dir("bar");
-  const Result r = jellysim("experiment swinging-bar --quiet --duration 4 --out " + dir.string());
+  const Result r = run_cli("experiment swinging-bar --quiet --duration 4 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"frames.csv", "energy.csv", "energy.png", "swinging_bar.png", "summary.json"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;
@@ -122,9 +95,10 @@ TEST(Cli, SwingingBarWritesItsOutputs) {
 
 TEST(Cli, SameInputsGiveByteIdenticalOutputs) {
   const fs::path a = fresh_dir("det_a"), b = fresh_dir("det_b");
-  const std::string args = "run --quiet --duration 3 --set time.adaptive=true --set time.integrator=rk4 --out ";
-  ASSERT_EQ(jellysim(args + a.string()).exit_code, 0);
-  ASSERT_EQ(jellysim(args + b.string()).exit_code, 0);
+  const std::string args =
+      "experiment swinging-bar --quiet --duration 3 --set time.adaptive=true --set time.integrator=rk4 --out ";
+  ASSERT_EQ(run_cli(args + a.string()).exit_code, 0);
+  ASSERT_EQ(run_cli(args + b.string()).exit_code, 0);
   int compared = 0;
   for (const auto& entry : fs::directory_iterator(a)) {
     const std::string name = entry.path().filename().string();
@@ -145,8 +119,9 @@ TEST(Cli, SameInputsGiveByteIdenticalOutputs) {
 
 TEST(Cli, DivergingRunStopsWithWhenAndWhereAndKeepsResults) {
   const fs::path dir = fresh_dir("diverge");
-  const Result r = jellysim("run --quiet --duration 50 --set time.integrator=forward-euler --set time.dt=0.2 --out " +
-                            dir.string());
+  const Result r = run_cli(
+      "experiment swinging-bar --quiet --duration 50 --set time.integrator=forward-euler --set time.dt=0.2 --out " +
+      dir.string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("diverged at t ="), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("point"), std::string::npos) << r.output;
@@ -159,7 +134,7 @@ TEST(Cli, DivergingRunStopsWithWhenAndWhereAndKeepsResults) {
 
 TEST(Cli, IntegratorOrderExperimentMeasuresExpectedOrders) {
   const fs::path dir = fresh_dir("order");
-  const Result r = jellysim("experiment integrator-order --quiet --out " + dir.string());
+  const Result r = run_cli("experiment integrator-order --quiet --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto orders = summary_of(dir)["measured_orders"];
   const std::map<std::string, double> expected = {{"forward-euler", 1}, {"predictor-corrector", 1}, {"leapfrog", 2},
@@ -175,7 +150,7 @@ TEST(Cli, IntegratorOrderExperimentMeasuresExpectedOrders) {
 
 TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   const fs::path dir = fresh_dir("cavity");
-  const Result r = jellysim("experiment driven-cavity --quiet --solver eulerian --re 100 --grid 16 "
+  const Result r = run_cli("experiment driven-cavity --quiet --solver eulerian --re 100 --grid 16 "
                             "--set figure_8_7.enabled=false --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_file(dir / "centerline_u.csv").substr(0, 4), "y,u\n");
@@ -198,14 +173,14 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   // (the 0.02 check at 64² is in tests/fluid).
   EXPECT_LT(summary["ghia_max_abs_u_error"].get<double>(), 0.1);
   EXPECT_LT(summary["ghia_max_abs_v_error"].get<double>(), 0.1);
-  EXPECT_EQ(jellysim("experiment driven-cavity --quiet --solver rk4 --out " + dir.string() + "_bad").exit_code, 2);
+  EXPECT_EQ(run_cli("experiment driven-cavity --quiet --solver rk4 --out " + dir.string() + "_bad").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir.string() + "_bad"));
   fs::remove_all(dir);
 }
 
 TEST(Cli, TaylorGreenMeasuresSpatialOrderOfBothSolvers) {
   const fs::path dir = fresh_dir("taylor_green");
-  const Result r = jellysim("experiment taylor-green --quiet --set 'study.grids=[16, 32, 64]' --out " + dir.string());
+  const Result r = run_cli("experiment taylor-green --quiet --set 'study.grids=[16, 32, 64]' --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto orders = summary_of(dir)["measured_orders_l2"];
   EXPECT_GT(orders["eulerian"].get<double>(), 1.7);        // second order in space
@@ -217,14 +192,14 @@ TEST(Cli, TaylorGreenMeasuresSpatialOrderOfBothSolvers) {
 
 TEST(Cli, SolverCostTablesEveryCombination) {
   const fs::path dir = fresh_dir("solver_cost");
-  const Result r = jellysim("experiment solver-cost --quiet --set 'study.grids=[16, 32]' --set study.steps=2 --out " +
+  const Result r = run_cli("experiment solver-cost --quiet --set 'study.grids=[16, 32]' --set study.steps=2 --out " +
                             dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string csv = read_file(dir / "solver_cost.csv");
   EXPECT_EQ(csv.substr(0, 29), "solver,pressure_solver,cells,");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2 * 2);  // solvers x pressure solvers x grids
   EXPECT_NE(csv.find("semi-lagrangian,multigrid,32,"), std::string::npos);
-  const Result bad = jellysim("experiment solver-cost --quiet --set 'study.pressure_solvers=[\"jacobi\"]' --out " +
+  const Result bad = run_cli("experiment solver-cost --quiet --set 'study.pressure_solvers=[\"jacobi\"]' --out " +
                               dir.string() + "_bad");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("study.pressure_solvers"), std::string::npos) << bad.output;

@@ -64,7 +64,12 @@ TEST(FieldPicture, WritesAPngFile) {
   render::FieldPictureOptions options;
   options.quantity = render::FieldQuantity::vorticity;
   options.panel_px = 200;
-  render::write_field_panels_png({{&s, "vortex", tracers.positions()}, {&s, "again", {}}}, 2, options, png);
+  render::FieldPicture first, second;
+  first.state = second.state = &s;
+  first.caption = "vortex";
+  first.tracers_m = tracers.positions();
+  second.caption = "again";
+  render::write_field_panels_png({first, second}, 2, options, png);
   ASSERT_TRUE(std::filesystem::exists(png));
   std::ifstream in(png, std::ios::binary);
   char magic[4] = {};

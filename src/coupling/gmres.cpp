@@ -1,0 +1,83 @@
+#include "coupling/gmres.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace jellysim::coupling {
+
+namespace {
+
+/// Givens rotation (c, s) that zeroes b in (a, b).
+void givens(double a, double b, double& c, double& s) {
+  const double r = std::hypot(a, b);
+  if (r == 0.0) {
+    c = 1.0;
+    s = 0.0;
+  } else {
+    c = a / r;
+    s = b / r;
+  }
+}
+
+}  // namespace
+
+GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                  int max_iterations, int restart) {
+  GmresReport report;
+  const double b_norm = b.norm();
+  if (b_norm == 0.0) {
+    x.setZero(b.size());
+    report.converged = true;
+    return report;
+  }
+  const Eigen::Index n = b.size();
+  const int m = std::max(1, std::min<int>(restart, static_cast<int>(n)));
+  std::vector<Eigen::VectorXd> basis(static_cast<std::size_t>(m + 1), Eigen::VectorXd(n));
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(m + 1, m);
+  Eigen::VectorXd cs(m), sn(m), g(m + 1), w(n), r(n);
+  while (true) {
+    apply(x, w);
+    r = b - w;
+    double beta = r.norm();
+    report.relative_residual = beta / b_norm;
+    if (report.relative_residual <= tolerance) {
+      report.converged = true;
+      return report;
+    }
+    if (report.iterations >= max_iterations) return report;
+    basis[0] = r / beta;
+    g.setZero();
+    g[0] = beta;
+    int k = 0;
+    for (; k < m && report.iterations < max_iterations; ++k) {
+      apply(basis[static_cast<std::size_t>(k)], w);
+      ++report.iterations;
+      for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
+        h(i, k) = w.dot(basis[static_cast<std::size_t>(i)]);
+        w -= h(i, k) * basis[static_cast<std::size_t>(i)];
+      }
+      h(k + 1, k) = w.norm();
+      if (h(k + 1, k) > 0.0) basis[static_cast<std::size_t>(k + 1)] = w / h(k + 1, k);
+      for (int i = 0; i < k; ++i) {  // apply the previous rotations to the new column
+        const double t = cs[i] * h(i, k) + sn[i] * h(i + 1, k);
+        h(i + 1, k) = -sn[i] * h(i, k) + cs[i] * h(i + 1, k);
+        h(i, k) = t;
+      }
+      givens(h(k, k), h(k + 1, k), cs[k], sn[k]);
+      h(k, k) = cs[k] * h(k, k) + sn[k] * h(k + 1, k);
+      h(k + 1, k) = 0.0;
+      g[k + 1] = -sn[k] * g[k];
+      g[k] = cs[k] * g[k];
+      if (std::abs(g[k + 1]) <= tolerance * b_norm || h(k, k) == 0.0) {
+        ++k;
+        break;
+      }
+    }
+    // Back-substitute the k × k triangular system and update x.
+    Eigen::VectorXd y = h.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
+    for (int i = 0; i < k; ++i) x += y[i] * basis[static_cast<std::size_t>(i)];
+  }
+}
+
+}  // namespace jellysim::coupling

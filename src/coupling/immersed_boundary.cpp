@@ -1,0 +1,311 @@
+#include "coupling/immersed_boundary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "elastic/forces.hpp"
+#include "fluid/projection.hpp"
+
+namespace jellysim::coupling {
+
+namespace {
+
+using Triplet = Eigen::Triplet<double>;
+
+std::string format_vec(Vec2 p) {
+  std::ostringstream s;
+  s.precision(4);
+  s << "(" << p.x << ", " << p.y << ") m";
+  return s.str();
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+/// Zeroes every stored sample of a face field outside the half-open range (boundary faces and
+/// ghosts): a body force acts only where the momentum equation is solved.
+void keep_only(fluid::Field& f, const fluid::FaceRange& r) {
+  for (int j = -1; j <= f.count_y(); ++j)
+    for (int i = -1; i <= f.count_x(); ++i)
+      if (i < r.i_begin || i >= r.i_end || j < r.j_begin || j >= r.j_end) f(i, j) = 0.0;
+}
+
+void add_block(std::vector<Triplet>& t, int a, int b, const Mat2& d) {
+  t.emplace_back(2 * a, 2 * b, d.xx);
+  t.emplace_back(2 * a, 2 * b + 1, d.xy);
+  t.emplace_back(2 * a + 1, 2 * b, d.yx);
+  t.emplace_back(2 * a + 1, 2 * b + 1, d.yy);
+}
+
+Eigen::VectorXd flatten(std::span<const Vec2> v) {
+  Eigen::VectorXd out(2 * static_cast<Eigen::Index>(v.size()));
+  for (std::size_t p = 0; p < v.size(); ++p) {
+    out[2 * static_cast<Eigen::Index>(p)] = v[p].x;
+    out[2 * static_cast<Eigen::Index>(p) + 1] = v[p].y;
+  }
+  return out;
+}
+
+void unflatten(const Eigen::VectorXd& in, std::vector<Vec2>& out) {
+  out.resize(static_cast<std::size_t>(in.size() / 2));
+  for (std::size_t p = 0; p < out.size(); ++p)
+    out[p] = {in[2 * static_cast<Eigen::Index>(p)], in[2 * static_cast<Eigen::Index>(p) + 1]};
+}
+
+}  // namespace
+
+std::string_view to_string(Scheme s) { return s == Scheme::explicit_euler ? "explicit" : "semi-implicit"; }
+
+std::optional<Scheme> scheme_from_string(std::string_view name) {
+  if (name == "explicit") return Scheme::explicit_euler;
+  if (name == "semi-implicit") return Scheme::semi_implicit;
+  return std::nullopt;
+}
+
+ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& body, const CouplingSettings& settings,
+                                   Actuator actuator)
+    : fluid_(fluid),
+      body_(body),
+      settings_(settings),
+      actuator_(std::move(actuator)),
+      time_s_(fluid.time_s()),
+      projector_(fluid::make_pressure_solver(fluid.settings().pressure_solver, fluid.settings().pressure)),
+      scratch_(fluid.state().grid),
+      homogeneous_(fluid.settings().boundaries.homogeneous()) {
+  if (!(settings_.safety_factor > 0.0)) throw std::invalid_argument("coupling safety factor must be > 0");
+  if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
+  body_.points.velocity.assign(body_.points.size(), Vec2{});
+}
+
+double ImmersedBoundary::next_time_step() const {
+  const fluid::FluidSettings& fs = fluid_.settings();
+  double dt = fluid::stability_time_step(fluid_.state().velocity, fs.viscosity_m2_per_s, settings_.safety_factor,
+                                         &fs.boundaries);
+  // The markers move with the fluid, but their interpolated speed can exceed the face maxima of the
+  // last step; include it in the CFL limit of eq. 4.8.
+  const fluid::MacGrid& g = fluid_.state().grid;
+  double marker_speed = 0.0;
+  for (Vec2 v : body_.points.velocity) marker_speed = std::max(marker_speed, std::max(std::abs(v.x), std::abs(v.y)));
+  if (marker_speed > 0.0) dt = std::min(dt, settings_.safety_factor * std::min(g.dx(), g.dy()) / marker_speed);
+  if (!(dt == dt)) return 0.0;
+  return std::min(dt, settings_.max_time_step_s);
+}
+
+CoupledStepReport ImmersedBoundary::step(double dt_s) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("coupled time step must be > 0");
+  CoupledStepReport r =
+      settings_.scheme == Scheme::explicit_euler ? step_explicit(dt_s) : step_semi_implicit(dt_s);
+  time_s_ += dt_s;
+  ++steps_;
+  return r;
+}
+
+void ImmersedBoundary::compute_forces(std::vector<Vec2>& force) const {
+  const auto& x = body_.points.position;
+  force.assign(x.size(), Vec2{});
+  const auto& lin = body_.linear;
+  for (std::size_t s = 0; s < lin.size(); ++s) {
+    const Vec2 f = elastic::linear_spring_force(x[lin.i[s]], x[lin.j[s]], lin.stiffness[s], lin.rest_length[s]);
+    force[lin.i[s]] += f;
+    force[lin.j[s]] -= f;
+  }
+  const auto& ang = body_.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    const elastic::AngularSpringForce f =
+        elastic::angular_spring_force(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
+    force[ang.i[s]] += f.on_i;
+    force[ang.j[s]] += f.on_j;
+    force[ang.k[s]] += f.on_k;
+  }
+}
+
+std::vector<Vec2> ImmersedBoundary::current_forces() const {
+  std::vector<Vec2> f;
+  compute_forces(f);
+  return f;
+}
+
+void ImmersedBoundary::assemble_stiffness(Eigen::SparseMatrix<double>& k) const {
+  const auto& x = body_.points.position;
+  std::vector<Triplet> t;
+  const auto& lin = body_.linear;
+  for (std::size_t s = 0; s < lin.size(); ++s) {
+    const int i = lin.i[s], j = lin.j[s];
+    const Mat2 d =
+        elastic::linear_spring_force_and_jacobian(x[i], x[j], lin.stiffness[s], lin.rest_length[s]).d_on_i_d_xi;
+    add_block(t, i, i, d);
+    add_block(t, i, j, -d);
+    add_block(t, j, i, -d);
+    add_block(t, j, j, d);
+  }
+  const auto& ang = body_.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    const int idx[3] = {ang.i[s], ang.j[s], ang.k[s]};
+    const elastic::AngularSpringForce f = elastic::angular_spring_force_and_jacobian(
+        x[idx[0]], x[idx[1]], x[idx[2]], ang.stiffness[s], ang.rest_angle[s]);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) add_block(t, idx[p], idx[q], f.jacobian[p][q]);
+  }
+  const auto n = static_cast<Eigen::Index>(2 * x.size());
+  k.resize(n, n);
+  k.setFromTriplets(t.begin(), t.end());
+}
+
+void ImmersedBoundary::move_markers_with_fluid(double dt_s) {
+  // Eq. 4.20: x(t + Δt) = x(t) + Δt u(x(t), t + Δt).
+  const fluid::Velocity& vel = fluid_.state().velocity;
+  auto& x = body_.points.position;
+  auto& v = body_.points.velocity;
+  v.resize(x.size());
+  interpolate_velocities(vel, x, settings_.kernel, v);
+  for (std::size_t p = 0; p < x.size(); ++p) x[p] += dt_s * v[p];
+}
+
+CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
+  CoupledStepReport report;
+  report.dt_s = dt_s;
+  if (actuator_) actuator_(time_s_, body_);
+  compute_forces(force_);
+  fluid::FaceAccelerations& acc = fluid_.body_acceleration();
+  acc.u.fill(0.0);
+  acc.v.fill(0.0);
+  spread_forces(body_.points.position, force_, settings_.kernel, fluid_.settings().density_kg_per_m3, acc);
+  report.fluid = fluid_.step(dt_s);
+  move_markers_with_fluid(dt_s);
+  return report;
+}
+
+void ImmersedBoundary::project_spread_forces(std::span<const Vec2> forces) {
+  fluid::Velocity& w = scratch_.velocity;
+  w.u.fill(0.0);
+  w.v.fill(0.0);
+  const double rho = fluid_.settings().density_kg_per_m3;
+  spread_forces(body_.points.position, forces, settings_.kernel, rho, w);
+  const fluid::MacGrid& g = scratch_.grid;
+  keep_only(w.u, fluid::interior_u_faces(g, homogeneous_));
+  keep_only(w.v, fluid::interior_v_faces(g, homogeneous_));
+  fluid::apply_velocity_boundaries(w, homogeneous_);
+  projector_.project(scratch_, homogeneous_, 1.0, rho);
+}
+
+void ImmersedBoundary::apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers) {
+  unflatten(forces, work_);
+  project_spread_forces(work_);
+  velocity_.resize(work_.size());
+  interpolate_velocities(scratch_.velocity, body_.points.position, settings_.kernel, velocity_);
+  velocity_at_markers = flatten(velocity_);
+}
+
+CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
+  CoupledStepReport report;
+  report.dt_s = dt_s;
+  // Forces at the end of the step: rest lengths at t + Δt, positions linearised about x^n.
+  if (actuator_) actuator_(time_s_ + dt_s, body_);
+  compute_forces(force_);
+  Eigen::SparseMatrix<double> stiffness;
+  assemble_stiffness(stiffness);
+
+  // 1. The fluid alone (advection, diffusion, projection) over the step: u_L.
+  fluid::FaceAccelerations& acc = fluid_.body_acceleration();
+  acc.u.fill(0.0);
+  acc.v.fill(0.0);
+  report.fluid = fluid_.step(dt_s);
+  const auto& x = body_.points.position;
+  velocity_.resize(x.size());
+  interpolate_velocities(fluid_.state().velocity, x, settings_.kernel, velocity_);
+
+  // 2. Backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ.
+  const Eigen::VectorXd fluid_velocity = flatten(velocity_);
+  const Eigen::VectorXd f0 = flatten(force_);
+  Eigen::VectorXd response;
+  apply_response(f0, response);
+  const Eigen::VectorXd rhs = dt_s * fluid_velocity + dt_s * dt_s * response;
+  const double dt2 = dt_s * dt_s;
+  LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    Eigen::VectorXd kv = stiffness * in;
+    Eigen::VectorXd rkv;
+    apply_response(kv, rkv);
+    out = in - dt2 * rkv;
+  };
+  Eigen::VectorXd dx = last_increment_.size() == rhs.size() ? last_increment_ : Eigen::VectorXd(rhs);
+  report.krylov = gmres(op, rhs, dx, settings_.krylov_tolerance, settings_.krylov_max_iterations);
+  last_increment_ = dx;
+
+  // 3. Apply the end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ.
+  const Eigen::VectorXd f1 = f0 + stiffness * dx;
+  unflatten(f1, work_);
+  project_spread_forces(work_);
+  fluid::Velocity& u = fluid_.state().velocity;
+  for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += dt_s * scratch_.velocity.u.raw()[k];
+  for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += dt_s * scratch_.velocity.v.raw()[k];
+  fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
+  move_markers_with_fluid(dt_s);
+  return report;
+}
+
+Vec2 total_force(const fluid::FaceAccelerations& acc, double density_kg_per_m3) {
+  const fluid::MacGrid& g = acc.u.grid();
+  Vec2 sum{};
+  for (double a : acc.u.raw()) sum.x += a;
+  for (double a : acc.v.raw()) sum.y += a;
+  return density_kg_per_m3 * g.dx() * g.dy() * sum;
+}
+
+std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,
+                            const std::vector<double>* strain_reference) {
+  const auto& x = body.points.position;
+  const auto& v = body.points.velocity;
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    if (!std::isfinite(x[p].x) || !std::isfinite(x[p].y) || (p < v.size() && !std::isfinite(norm(v[p]))))
+      return "numerical instability: marker " + std::to_string(p) + " has a non-finite position or velocity";
+    if (p < v.size() && norm(v[p]) > limits.max_speed_m_per_s)
+      return "numerical instability: marker " + std::to_string(p) + " at " + format_vec(x[p]) + " moves at " +
+             format_number(norm(v[p])) + " m/s > max_speed = " + format_number(limits.max_speed_m_per_s) + " m/s";
+  }
+  const fluid::MacGrid& g = flow.grid;
+  auto check_field = [&](const fluid::Field& f, const char* name) -> std::string {
+    for (int j = 0; j < f.count_y(); ++j)
+      for (int i = 0; i < f.count_x(); ++i) {
+        const double value = f(i, j);
+        if (!(std::abs(value) <= limits.max_speed_m_per_s)) {
+          return "numerical instability: fluid velocity " + std::string(name) + " = " + format_number(value) +
+                 " m/s at " + format_vec(f.position(i, j)) + (std::isfinite(value) ? " exceeds max_speed = " +
+                 format_number(limits.max_speed_m_per_s) + " m/s" : "");
+        }
+      }
+    return {};
+  };
+  (void)g;
+  if (std::string p = check_field(flow.velocity.u, "u"); !p.empty()) return p;
+  if (std::string p = check_field(flow.velocity.v, "v"); !p.empty()) return p;
+  const auto& lin = body.linear;
+  for (std::size_t s = 0; s < lin.size(); ++s) {
+    const double reference = strain_reference ? (*strain_reference)[s] : lin.rest_length[s];
+    if (reference <= 0.0) continue;  // zero-length (pure tension) springs have no strain
+    const double l = norm(x[lin.j[s]] - x[lin.i[s]]);
+    const double strain = l / reference - 1.0;
+    if (std::abs(strain) > limits.max_strain)
+      return "structural instability: spring " + std::to_string(s) + " (points " + std::to_string(lin.i[s]) + "–" +
+             std::to_string(lin.j[s]) + ") near " + format_vec(0.5 * (x[lin.i[s]] + x[lin.j[s]])) + " has strain " +
+             format_number(strain) + " beyond max_strain = " + format_number(limits.max_strain);
+  }
+  const auto& ang = body.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    const double bend =
+        elastic::wrap_angle(elastic::turning_angle(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]]) - ang.rest_angle[s]);
+    if (std::abs(bend) > limits.max_bend_rad)
+      return "structural instability: joint " + std::to_string(s) + " at point " + std::to_string(ang.j[s]) + " " +
+             format_vec(x[ang.j[s]]) + " is bent " + format_number(bend) + " rad from rest, beyond max_bend = " +
+             format_number(limits.max_bend_rad) + " rad (the mesh folded)";
+  }
+  return {};
+}
+
+}  // namespace jellysim::coupling

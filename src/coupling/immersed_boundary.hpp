@@ -1,0 +1,113 @@
+#pragma once
+// Peskin's immersed boundary method (thesis §4.3.2): the points of a spring-mass body are
+// massless markers carried by the fluid (eq. 4.20); their spring forces are spread onto the grid
+// as a body acceleration F/(ρΔxΔy) (eq. 4.19). Two time-stepping schemes:
+//  * explicit (the thesis's): forces from the positions at the start of the step;
+//  * semi-implicit (beyond the thesis, which names it as future work): the forces are those at the
+//    end of the step, linearised, F(X + ΔX) ≈ F + KΔX, with ΔX = Δt·u^{n+1}(X) found by GMRES
+//    where every operator application spreads, projects and interpolates (the fluid's true
+//    response to a point force, pressure included). This is backward Euler for the stiff
+//    elastic–fluid exchange and stays stable at steps limited only by the fluid's CFL condition.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "coupling/gmres.hpp"
+#include "coupling/kernels.hpp"
+#include "elastic/body.hpp"
+#include "fluid/fluid_solver.hpp"
+
+namespace jellysim::coupling {
+
+enum class Scheme { explicit_euler, semi_implicit };
+std::string_view to_string(Scheme s);
+/// "explicit" or "semi-implicit"; nullopt otherwise.
+std::optional<Scheme> scheme_from_string(std::string_view name);
+
+struct CouplingSettings {
+  Kernel kernel = Kernel::bilinear;
+  Scheme scheme = Scheme::semi_implicit;
+  double safety_factor = 0.5;      ///< τ: Δt = τ·min(eq. 4.8, eq. 4.9), then clamped below
+  double max_time_step_s = 0.01;   ///< upper bound on Δt (also used while the fluid is at rest)
+  double min_time_step_s = 1e-7;   ///< a smaller Δt means the run cannot go on
+  double krylov_tolerance = 1e-6;  ///< relative residual of the semi-implicit GMRES solve
+  int krylov_max_iterations = 200;
+};
+
+/// Limits whose violation stops a run (thesis §8.1.4's two kinds of instability).
+struct StabilityLimits {
+  double max_speed_m_per_s = 5.0;  ///< numerical: fluid or point speed above this is a blow-up
+  double max_strain = 1.0;         ///< structural: |l/l_r − 1| of any linear spring
+  double max_bend_rad = 2.5;       ///< structural: |θ − θ_r| of any angular spring (a fold)
+};
+
+/// Sets time-dependent parameters of the body (muscle rest lengths) for time t.
+using Actuator = std::function<void(double t, elastic::Body& body)>;
+
+struct CoupledStepReport {
+  double dt_s = 0.0;
+  fluid::StepReport fluid{};
+  GmresReport krylov{};  ///< semi-implicit scheme only
+};
+
+class ImmersedBoundary {
+ public:
+  /// The fluid solver and body are referenced and advanced in place. The body's points are the
+  /// markers; their masses, drag and gravity are ignored (the body is neutrally buoyant and its
+  /// mass is the fluid's, §4.3.2).
+  ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& body, const CouplingSettings& settings,
+                   Actuator actuator = {});
+
+  double time_s() const { return time_s_; }
+  long steps() const { return steps_; }
+  const CouplingSettings& settings() const { return settings_; }
+  fluid::FluidSolver& fluid() { return fluid_; }
+  const elastic::Body& body() const { return body_; }
+
+  /// Δt = τ·min(eqs. 4.8, 4.9) from the current fluid and marker speeds, at most max_time_step_s.
+  double next_time_step() const;
+  /// Advances fluid and markers by dt_s; the markers' velocities are stored in body().points.velocity.
+  CoupledStepReport step(double dt_s);
+
+  /// Elastic forces (N per metre of depth) on the markers at the current positions and time.
+  std::vector<Vec2> current_forces() const;
+
+ private:
+  CoupledStepReport step_explicit(double dt_s);
+  CoupledStepReport step_semi_implicit(double dt_s);
+  void compute_forces(std::vector<Vec2>& force) const;
+  void assemble_stiffness(Eigen::SparseMatrix<double>& k) const;
+  /// velocity_at_markers = J P S (forces)/ρ: the divergence-free velocity change per second that
+  /// the given marker forces cause, interpolated back at the markers.
+  void apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers);
+  /// Spreads forces into scratch_.velocity as accelerations and makes them divergence-free.
+  void project_spread_forces(std::span<const Vec2> forces);
+  void move_markers_with_fluid(double dt_s);
+
+  fluid::FluidSolver& fluid_;
+  elastic::Body& body_;
+  CouplingSettings settings_;
+  Actuator actuator_;
+  double time_s_ = 0.0;
+  long steps_ = 0;
+  fluid::Projector projector_;
+  fluid::FlowState scratch_;
+  fluid::Boundaries homogeneous_;
+  std::vector<Vec2> force_, velocity_, work_;
+  Eigen::VectorXd last_increment_;
+};
+
+/// Problems that should stop a run, or "" when none: "numerical instability: ..." (NaN, runaway
+/// speed) or "structural instability: ..." (overstretched spring, folded joint), naming the point or
+/// spring and where it is.
+/// Strain is measured against strain_reference[s] when given (e.g. a muscle's uncontracted length),
+/// else against the spring's current rest length.
+std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,
+                            const std::vector<double>* strain_reference = nullptr);
+
+/// Σ_faces a·ρΔxΔy: the total force (N per metre of depth) a face-acceleration field exerts.
+Vec2 total_force(const fluid::FaceAccelerations& acc, double density_kg_per_m3);
+
+}  // namespace jellysim::coupling

@@ -1,0 +1,95 @@
+#include "coupling/kernels.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace jellysim::coupling {
+
+std::string_view to_string(Kernel k) { return k == Kernel::bilinear ? "bilinear" : "peskin4"; }
+
+std::optional<Kernel> kernel_from_string(std::string_view name) {
+  if (name == "bilinear") return Kernel::bilinear;
+  if (name == "peskin4") return Kernel::peskin4;
+  return std::nullopt;
+}
+
+int kernel_radius(Kernel k) { return k == Kernel::bilinear ? 1 : 2; }
+
+// Peskin (2002), eq. 6.27: the 4-point function built from the zeroth and first moment conditions
+// and Σφ² = 3/8.
+double kernel_weight(Kernel k, double r) {
+  const double a = std::abs(r);
+  if (k == Kernel::bilinear) return a < 1.0 ? 1.0 - a : 0.0;
+  if (a < 1.0) return (3.0 - 2.0 * a + std::sqrt(1.0 + 4.0 * a - 4.0 * a * a)) / 8.0;
+  if (a < 2.0) return (5.0 - 2.0 * a - std::sqrt(std::max(0.0, -7.0 + 12.0 * a - 4.0 * a * a))) / 8.0;
+  return 0.0;
+}
+
+Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k) {
+  const fluid::MacGrid& g = field.grid();
+  const fluid::Staggering st = field.staggering();
+  // Continuous sample coordinates: sample (i, j) sits at grid coordinates (i + st.x, j + st.y).
+  const Vec2 gc = g.grid_from_world(p);
+  const double fx = gc.x - st.x, fy = gc.y - st.y;
+  const int r = kernel_radius(k);
+  Stencil s;
+  s.width = 2 * r;
+  s.i0 = static_cast<int>(std::floor(fx)) - r + 1;
+  s.j0 = static_cast<int>(std::floor(fy)) - r + 1;
+  for (int a = 0; a < s.width; ++a) {
+    const int i = s.i0 + a, j = s.j0 + a;
+    s.wx[a] = (i >= -1 && i <= field.count_x()) ? kernel_weight(k, fx - i) : 0.0;
+    s.wy[a] = (j >= -1 && j <= field.count_y()) ? kernel_weight(k, fy - j) : 0.0;
+  }
+  return s;
+}
+
+double interpolate(const fluid::Field& field, const Stencil& s) {
+  double sum = 0.0;
+  for (int b = 0; b < s.width; ++b) {
+    if (s.wy[b] == 0.0) continue;
+    for (int a = 0; a < s.width; ++a) {
+      if (s.wx[a] == 0.0) continue;
+      sum += s.wx[a] * s.wy[b] * field(s.i0 + a, s.j0 + b);
+    }
+  }
+  return sum;
+}
+
+void spread(fluid::Field& field, const Stencil& s, double value) {
+  for (int b = 0; b < s.width; ++b) {
+    if (s.wy[b] == 0.0) continue;
+    for (int a = 0; a < s.width; ++a) {
+      if (s.wx[a] == 0.0) continue;
+      field(s.i0 + a, s.j0 + b) += s.wx[a] * s.wy[b] * value;
+    }
+  }
+}
+
+double stencil_self_weight(const Stencil& s) {
+  double sx = 0.0, sy = 0.0;
+  for (int a = 0; a < s.width; ++a) {
+    sx += s.wx[a] * s.wx[a];
+    sy += s.wy[a] * s.wy[a];
+  }
+  return sx * sy;
+}
+
+void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out) {
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    out[p] = {interpolate(vel.u, make_stencil(vel.u, points[p], k)),
+              interpolate(vel.v, make_stencil(vel.v, points[p], k))};
+  }
+}
+
+void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
+                   fluid::FaceAccelerations& acc) {
+  const fluid::MacGrid& g = acc.u.grid();
+  const double to_acceleration = 1.0 / (density_kg_per_m3 * g.dx() * g.dy());  // eq. 4.19
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    spread(acc.u, make_stencil(acc.u, points[p], k), forces[p].x * to_acceleration);
+    spread(acc.v, make_stencil(acc.v, points[p], k), forces[p].y * to_acceleration);
+  }
+}
+
+}  // namespace jellysim::coupling

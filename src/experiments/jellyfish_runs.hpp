@@ -1,0 +1,55 @@
+#pragma once
+// Shared pieces of the jellyfish commands (`jellysim simulate` and the chapter 8 jellyfish
+// experiments): reading a swim scene from its configuration, running it while writing per-frame
+// pictures and VTK files, and writing metrics, plots and summary figures.
+#include <nlohmann/json.hpp>
+
+#include "io/config.hpp"
+#include "io/output.hpp"
+#include "jellyfish/metrics.hpp"
+#include "jellyfish/swim_simulation.hpp"
+#include "render/field_picture.hpp"
+
+namespace jellysim::experiments {
+
+/// Reads [tank], [jellyfish], [coupling], [stability], duration and output.frame_interval;
+/// throws InputError naming the field and its allowed range.
+jellyfish::SwimSettings read_swim_settings(const io::Config& c);
+
+struct SwimOutputOptions {
+  bool pictures = false;
+  int picture_every = 1;
+  render::FieldQuantity quantity = render::FieldQuantity::vorticity;
+  double zoom_diameters = 6.0;  ///< picture width in bell diameters; 0: whole tank
+  bool vtk = false;
+};
+SwimOutputOptions read_output_options(const io::Config& c);
+
+struct SwimRecording {
+  std::vector<jellyfish::SliceFrame> frames;
+  jellyfish::SwimRunStats stats;
+  std::vector<jellyfish::MetricsRow> metrics;
+};
+
+/// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).
+SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
+                       const io::OutputDir* out, const sim::ProgressCallback& progress);
+
+/// metrics.csv: t, position, velocity, acceleration, volume, aperture_area, volume_ratio,
+/// aperture_ratio, thrust, lateral, daniel_velocity, daniel_position.
+void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
+                       const std::string& name = "metrics.csv");
+/// slices.csv: frame, t, part (umbrella or tentacle_k), index, x, y — the recorded 2D slices.
+void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames);
+/// kinematics.png (position, velocity, acceleration; Figs 8.15–8.17, with Daniel's model) and
+/// morphology.png (volume and aperture ratios; Fig. 8.18).
+void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
+                      const std::string& title);
+/// Key figures for summary.json: units, bell_height, cycles, distance_travelled, lateral_drift,
+/// volume_frequency, simulated_seconds, wall_seconds, steps and more.
+nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, const SwimRecording& rec);
+
+/// The 2D picture of one state (springs, muscles, tracers over speed or vorticity).
+render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double zoom_diameters);
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,423 @@
+// The chapter 8 jellyfish experiments (thesis §8.1.3–8.2.3): oval membrane (Figs 8.8/8.9),
+// kinematics (Figs 8.15–8.17), morphology (Fig. 8.18), structural and numerical instability
+// (Figs 8.11/8.12), the frequency sweep (Figs 8.13/8.14), the fluid-free model (§8.2.3) and the
+// stable step of the explicit and semi-implicit couplings.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "coupling/oval_membrane.hpp"
+#include "experiments/experiment.hpp"
+#include "experiments/jellyfish_runs.hpp"
+#include "io/errors.hpp"
+#include "jellyfish/fluidless.hpp"
+#include "render/plot.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+using io::write_via_temporary;
+
+void write_chart(const io::OutputDir& out, const std::string& name, render::ChartSpec chart) {
+  write_via_temporary(out, name, [&](const auto& p) { render::write_chart_png(chart, p); });
+}
+
+// ---------------------------------------------------------------- oval membrane (Figs 8.8, 8.9)
+
+coupling::OvalMembraneSettings read_membrane(const io::Config& c) {
+  coupling::OvalMembraneSettings s;
+  s.solver = c.choice("solver", {"eulerian", "semi-lagrangian"});
+  s.cells = static_cast<int>(c.integer("membrane.cells", 4, 1024));
+  s.box_m = c.number("membrane.box", io::Range::positive());
+  s.viscosity_m2_per_s = c.number("membrane.viscosity", io::Range::non_negative());
+  s.density_kg_per_m3 = c.number("membrane.density", io::Range::positive());
+  s.stiffness = c.number("membrane.stiffness", io::Range::positive());
+  const Vec2 axes = c.vec2("membrane.semi_axes");
+  if (!(axes.x > 0 && axes.y > 0 && axes.x < 0.5 * s.box_m && axes.y < 0.5 * s.box_m))
+    throw InputError("field 'membrane.semi_axes' must be positive and below half the box");
+  s.semi_axis_x_m = axes.x;
+  s.semi_axis_y_m = axes.y;
+  s.dt_s = c.number("membrane.dt", io::Range::positive());
+  s.duration_s = c.number("duration", io::Range::positive());
+  s.frame_interval_s = c.number("membrane.frame_interval", io::Range::positive());
+  s.coupling.scheme = *coupling::scheme_from_string(c.choice("membrane.scheme", {"explicit", "semi-implicit"}));
+  s.coupling.kernel = *coupling::kernel_from_string(c.choice("membrane.kernel", {"bilinear", "peskin4"}));
+  return s;
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context& ctx) {
+  const coupling::OvalMembraneSettings base = read_membrane(ctx.config);
+  const auto refinement = ctx.config.integers("refinement.cells", 4, 1024);
+  return [base, refinement, ctx](const io::OutputDir& out) {
+    const coupling::MembraneRun run = coupling::run_oval_membrane(base);
+    io::CsvWriter area({"t", "area", "area_ratio", "aspect_ratio"});
+    const double a0 = run.frames.front().area;
+    for (const auto& f : run.frames) area.row({f.t, f.area, f.area / a0, f.aspect_ratio});
+    out.write_text("area.csv", area.text());
+    // Shapes over time (Fig. 8.8).
+    std::vector<render::Drawing> panels;
+    const std::size_t shown = std::min<std::size_t>(run.frames.size(), 6);
+    for (std::size_t k = 0; k < shown; ++k) {
+      const auto& f = run.frames[shown == 1 ? 0 : k * (run.frames.size() - 1) / (shown - 1)];
+      render::Drawing d;
+      d.caption = "t = " + io::format_double(std::round(f.t * 100) / 100);
+      for (std::size_t i = 0; i < f.points.size(); ++i) d.segments.push_back({f.points[i], f.points[(i + 1) % f.points.size()]});
+      d.marked_points = {Vec2{0, 0}, Vec2{base.box_m, base.box_m}};  // keeps the box in view
+      panels.push_back(std::move(d));
+    }
+    write_via_temporary(out, "shapes.png", [&](const auto& p) {
+      render::write_drawing_strip_png(panels, 3, "oval membrane (" + base.solver + ")", p);
+    });
+    // Area retained over time (Fig. 8.9) and the refinement study.
+    render::ChartSpec chart;
+    chart.title = "Oval membrane: area retained (" + base.solver + ")";
+    chart.x_label = "t (s)";
+    chart.y_label = "A / A0";
+    if (std::find(refinement.begin(), refinement.end(), base.cells) == refinement.end()) {
+      chart.series.emplace_back();
+      chart.series.back().label = std::to_string(base.cells) + " x " + std::to_string(base.cells);
+      for (const auto& f : run.frames) {
+        chart.series.back().x.push_back(f.t);
+        chart.series.back().y.push_back(f.area / a0);
+      }
+    }
+    io::CsvWriter refine({"cells", "dt", "area_lost_percent", "final_aspect_ratio", "wall_seconds"});
+    nlohmann::ordered_json study = nlohmann::ordered_json::array();
+    for (const auto cells : refinement) {
+      coupling::OvalMembraneSettings s = base;
+      s.cells = static_cast<int>(cells);
+      s.dt_s = base.dt_s * base.cells / static_cast<double>(cells);  // same Courant number
+      const coupling::MembraneRun r = coupling::run_oval_membrane(s);
+      const double lost = 100.0 * (1.0 - r.frames.back().area / r.frames.front().area);
+      refine.row({static_cast<double>(cells), s.dt_s, lost, r.frames.back().aspect_ratio, r.wall_seconds});
+      study.push_back({{"cells", cells}, {"area_lost_percent", lost}, {"failure", r.failure}});
+      chart.series.emplace_back();
+      chart.series.back().label = std::to_string(cells) + " x " + std::to_string(cells);
+      for (const auto& f : r.frames) {
+        chart.series.back().x.push_back(f.t);
+        chart.series.back().y.push_back(f.area / r.frames.front().area);
+      }
+    }
+    out.write_text("refinement.csv", refine.text());
+    chart.legend = render::LegendCorner::BottomLeft;
+    write_chart(out, "area.png", chart);
+    nlohmann::ordered_json fig;
+    fig["solver"] = base.solver;
+    fig["area_lost_percent"] = 100.0 * (1.0 - run.frames.back().area / a0);
+    fig["thesis_area_lost_percent"] = base.solver == "eulerian" ? 2.575 : 3.67;
+    fig["initial_aspect_ratio"] = run.frames.front().aspect_ratio;
+    fig["final_aspect_ratio"] = run.frames.back().aspect_ratio;
+    fig["steps"] = run.steps;
+    fig["wall_seconds"] = run.wall_seconds;
+    fig["refinement"] = study;
+    write_summary(out, "experiment oval-membrane", ctx.config, fig, run.failure);
+    return Outcome{run.failure};
+  };
+}
+
+// ------------------------------------------------ kinematics and morphology (Figs 8.15–8.18)
+
+std::function<Outcome(const io::OutputDir&)> prepare_swim_study(const Context& ctx, const std::string& name) {
+  const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
+  const SwimOutputOptions options = read_output_options(ctx.config);
+  return [settings, options, ctx, name](const io::OutputDir& out) {
+    const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
+    write_metrics_csv(out, rec.metrics);
+    if (name == "morphology") {
+      io::CsvWriter csv({"t", "volume_ratio", "aperture_ratio", "volume", "aperture_area"});
+      for (const auto& r : rec.metrics) csv.row({r.t, r.volume_ratio, r.aperture_ratio, r.volume, r.aperture_area});
+      out.write_text("morphology.csv", csv.text());
+    }
+    write_swim_plots(out, rec.metrics, name);
+    write_summary(out, "experiment " + name, ctx.config, swim_figures(settings, rec), rec.stats.failure);
+    return Outcome{rec.stats.failure};
+  };
+}
+
+// -------------------------------------------- structural and numerical instability (Figs 8.11/8.12)
+
+/// Runs a scene that is expected to become unstable, keeps pictures of a few frames and of the
+/// failing state, and reports which kind of instability the checks found. Exit status 0 either way:
+/// finding (or not finding) the instability is the result.
+std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& ctx, const std::string& name) {
+  const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
+  const int panels = static_cast<int>(ctx.config.integer("figure.panels", 1, 24));
+  const double zoom = ctx.config.number("output.picture_zoom", io::Range::non_negative());
+  const std::string expected = ctx.config.choice("figure.expected", {"structural", "numerical"});
+  return [settings, panels, zoom, expected, ctx, name](const io::OutputDir& out) {
+    jellyfish::SwimSimulation sim(settings);
+    struct Snapshot {
+      fluid::FlowState flow;
+      render::FieldPicture picture;
+    };
+    std::vector<std::unique_ptr<Snapshot>> snaps;
+    std::vector<jellyfish::SliceFrame> frames;
+    const double every = settings.duration_s / std::max(1, panels - 1);
+    double next = 0.0;
+    auto snapshot = [&](const jellyfish::SwimSimulation& s) {
+      auto snap = std::make_unique<Snapshot>();
+      snap->flow = s.flow();
+      snap->picture = swim_picture(s, zoom);
+      snap->picture.state = &snap->flow;
+      snaps.push_back(std::move(snap));
+    };
+    const jellyfish::SwimRunStats stats = sim.run(
+        [&](const jellyfish::SwimSimulation& s) -> std::string {
+          frames.push_back(s.jellyfish().slice_frame(s.time_s()));
+          if (s.time_s() >= next - 1e-9 || !s.check().empty()) {
+            snapshot(s);
+            next += every;
+          }
+          return {};
+        },
+        ctx.progress);
+    render::FieldPictureOptions po;
+    po.quantity = render::FieldQuantity::speed;
+    std::vector<render::FieldPicture> pictures;
+    for (const auto& s : snaps) pictures.push_back(s->picture);
+    if (!pictures.empty()) {
+      const std::string figure = name == "structural-instability" ? "figure_8_11.png" : "figure_8_12.png";
+      write_via_temporary(out, figure, [&](const auto& p) {
+        render::write_field_panels_png(pictures, std::min<int>(3, static_cast<int>(pictures.size())), po, p);
+      });
+    }
+    SwimRecording rec{frames, stats, jellyfish::compute_metrics(frames, {settings.tank.density_kg_per_m3,
+                                                                        std::max(settings.tank.viscosity_m2_per_s, 1e-9)})};
+    write_metrics_csv(out, rec.metrics);
+    nlohmann::ordered_json fig = swim_figures(settings, rec);
+    const std::string kind = stats.failure.rfind("structural", 0) == 0 ? "structural"
+                             : stats.failure.rfind("numerical", 0) == 0 ? "numerical" : "none";
+    fig["instability"] = kind;
+    fig["expected_instability"] = expected;
+    fig["instability_message"] = stats.failure;
+    fig["bell_modulus"] = settings.jellyfish.bell_modulus_pa;
+    write_summary(out, "experiment " + name, ctx.config, fig, "");
+    return Outcome{};
+  };
+}
+
+// ------------------------------------------------------------ frequency sweep (Figs 8.13/8.14)
+
+struct SweepResult {
+  double frequency = 0.0;
+  SwimRecording rec;
+};
+
+std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
+  const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
+  const std::vector<double> frequencies = ctx.config.numbers("sweep.frequencies", io::Range{0.0, 100.0, true, false});
+  const int threads_wanted = static_cast<int>(ctx.config.integer("sweep.threads", 0, 256));
+  return [base, frequencies, threads_wanted, ctx](const io::OutputDir& out) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<SweepResult> results(frequencies.size());
+    std::atomic<std::size_t> next{0};
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = std::min<unsigned>(threads_wanted > 0 ? static_cast<unsigned>(threads_wanted) : cores,
+                                                static_cast<unsigned>(frequencies.size()));
+    auto worker = [&]() {
+      for (std::size_t k = next++; k < frequencies.size(); k = next++) {
+        jellyfish::SwimSettings s = base;
+        s.jellyfish.frequency_hz = frequencies[k];
+        results[k].frequency = frequencies[k];
+        results[k].rec = run_swim(s, {}, nullptr, {});
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+    io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "wall_seconds", "failed"});
+    render::ChartSpec distance, trajectories;
+    distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
+    distance.x_label = "frequency (Hz)";
+    distance.y_label = "distance (m)";
+    distance.series.emplace_back();
+    distance.series.back().label = "distance in " + io::format_double(base.duration_s) + " s";
+    distance.series.back().markers = true;
+    trajectories.title = "Trajectories (Fig. 8.13)";
+    trajectories.x_label = "t (s)";
+    trajectories.y_label = "position (m)";
+    trajectories.legend = render::LegendCorner::TopLeft;
+    nlohmann::ordered_json table = nlohmann::ordered_json::array();
+    double best = -INFINITY, best_f = 0.0;
+    for (const auto& r : results) {
+      const double d = r.rec.metrics.empty() ? 0.0 : r.rec.metrics.back().position;
+      const double lat = r.rec.metrics.empty() ? 0.0 : r.rec.metrics.back().lateral;
+      const double speed = r.rec.stats.simulated_seconds > 0 ? d / r.rec.stats.simulated_seconds : 0.0;
+      csv.row({r.frequency, d, speed, lat, r.rec.stats.wall_seconds, r.rec.stats.failure.empty() ? 0.0 : 1.0});
+      distance.series.back().x.push_back(r.frequency);
+      distance.series.back().y.push_back(d);
+      trajectories.series.emplace_back();
+      trajectories.series.back().label = io::format_double(r.frequency) + " Hz";
+      for (const auto& m : r.rec.metrics) {
+        trajectories.series.back().x.push_back(m.t);
+        trajectories.series.back().y.push_back(m.position);
+      }
+      table.push_back({{"frequency", r.frequency}, {"distance_travelled", d}, {"failure", r.rec.stats.failure}});
+      if (r.rec.stats.failure.empty() && d > best) {
+        best = d;
+        best_f = r.frequency;
+      }
+    }
+    out.write_text("sweep.csv", csv.text());
+    write_chart(out, "sweep.png", distance);
+    write_chart(out, "trajectories.png", trajectories);
+    nlohmann::ordered_json fig;
+    fig["units"] = {{"frequency", "Hz"}, {"distance", "m"}, {"time", "s"}};
+    fig["best_frequency"] = best_f;
+    fig["best_distance"] = std::isfinite(best) ? best : 0.0;
+    fig["threads"] = threads;
+    fig["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fig["simulated_seconds"] = base.duration_s;
+    fig["bell_height"] = base.jellyfish.height_m;
+    fig["runs"] = table;
+    write_summary(out, "sweep", ctx.config, fig, "");
+    return Outcome{};
+  };
+}
+
+// ------------------------------------------------------------------- fluid-free model (§8.2.3)
+
+std::function<Outcome(const io::OutputDir&)> prepare_fluidless(const Context& ctx) {
+  const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
+  jellyfish::FluidlessSettings fl;
+  fl.drag_kg_per_s = ctx.config.number("fluidless.drag", io::Range::non_negative());
+  fl.pressure_factor = ctx.config.number("fluidless.pressure_factor", io::Range::non_negative());
+  const double point_mass = ctx.config.number("fluidless.point_mass", io::Range::positive());
+  sim::TimeSettings time;
+  time.integrator = ctx.config.choice("fluidless.integrator", ode::integrator_names());
+  time.dt = ctx.config.number("fluidless.dt", io::Range::positive());
+  time.adaptive = ctx.config.boolean("fluidless.adaptive");
+  time.tolerances.atol = ctx.config.number("fluidless.atol", io::Range::positive());
+  time.tolerances.rtol = ctx.config.number("fluidless.rtol", io::Range::non_negative());
+  time.duration = settings.duration_s;
+  time.frame_interval = settings.frame_interval_s;
+  const bool compare = ctx.config.boolean("fluidless.compare_with_fluid");
+  return [settings, fl, point_mass, time, compare, ctx](const io::OutputDir& out) {
+    jellyfish::JellyfishSpec spec = settings.jellyfish;
+    spec.point_mass_kg = point_mass;
+    jellyfish::Jellyfish jelly(spec);
+    jellyfish::FluidlessSystem system(jelly, fl);
+    ode::Vector y = system.pack_state();
+    std::vector<jellyfish::SliceFrame> frames;
+    const auto start = std::chrono::steady_clock::now();
+    const sim::RunOutcome result = sim::integrate(
+        system, y, time,
+        [&](double t, const ode::Vector& yf) -> std::string {
+          if (std::string p = sim::check_finite(yf); !p.empty()) return p;
+          system.unpack_state(yf);
+          frames.push_back(jelly.slice_frame(t));
+          return {};
+        },
+        ctx.progress);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    SwimRecording rec;
+    rec.frames = frames;
+    rec.stats.simulated_seconds = result.statistics.simulated_seconds;
+    rec.stats.wall_seconds = wall;
+    rec.stats.steps = result.statistics.steps;
+    rec.stats.failure = result.failure;
+    rec.metrics = jellyfish::compute_metrics(frames, {settings.tank.density_kg_per_m3,
+                                                     std::max(settings.tank.viscosity_m2_per_s, 1e-9)});
+    write_metrics_csv(out, rec.metrics);
+    write_swim_plots(out, rec.metrics, "fluid-free");
+    nlohmann::ordered_json fig = swim_figures(settings, rec);
+    fig["function_evaluations"] = result.statistics.function_evaluations;
+    if (compare && result.failure.empty()) {
+      const SwimRecording with_fluid = run_swim(settings, {}, nullptr, {});
+      write_metrics_csv(out, with_fluid.metrics, "metrics_with_fluid.csv");
+      fig["with_fluid"] = swim_figures(settings, with_fluid);
+      fig["speedup_over_fluid"] = wall > 0 ? with_fluid.stats.wall_seconds / wall : 0.0;
+    }
+    write_summary(out, "experiment fluidless", ctx.config, fig, result.failure);
+    return Outcome{result.failure};
+  };
+}
+
+// ------------------------------------------- stable step: explicit versus semi-implicit coupling
+
+std::function<Outcome(const io::OutputDir&)> prepare_coupling_stability(const Context& ctx) {
+  const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
+  const std::vector<double> steps = ctx.config.numbers("study.time_steps", io::Range::positive());
+  return [base, steps, ctx](const io::OutputDir& out) {
+    io::CsvWriter csv({"dt", "explicit_stable", "explicit_wall_per_simulated_second", "semi_implicit_stable",
+                       "semi_implicit_wall_per_simulated_second", "semi_implicit_krylov_per_step"});
+    nlohmann::ordered_json fig, runs = nlohmann::ordered_json::array();
+    double largest[2] = {0.0, 0.0};
+    for (double dt : steps) {
+      double wall[2] = {0, 0}, krylov = 0.0;
+      bool stable[2] = {false, false};
+      for (int scheme = 0; scheme < 2; ++scheme) {
+        jellyfish::SwimSettings s = base;
+        s.coupling.scheme = scheme == 0 ? coupling::Scheme::explicit_euler : coupling::Scheme::semi_implicit;
+        s.coupling.max_time_step_s = dt;
+        s.coupling.safety_factor = 1.0;
+        s.frame_interval_s = std::max(dt, base.frame_interval_s);
+        const SwimRecording r = run_swim(s, {}, nullptr, {});
+        stable[scheme] = r.stats.failure.empty();
+        wall[scheme] = r.stats.simulated_seconds > 0 ? r.stats.wall_seconds / r.stats.simulated_seconds : 0.0;
+        if (scheme == 1 && r.stats.steps > 0) krylov = static_cast<double>(r.stats.krylov_iterations) / r.stats.steps;
+        if (stable[scheme]) largest[scheme] = std::max(largest[scheme], dt);
+        runs.push_back({{"dt", dt}, {"scheme", scheme == 0 ? "explicit" : "semi-implicit"}, {"failure", r.stats.failure},
+                        {"wall_per_simulated_second", wall[scheme]}, {"distance_travelled", r.metrics.empty() ? 0.0 : r.metrics.back().position}});
+      }
+      csv.row({dt, stable[0] ? 1.0 : 0.0, wall[0], stable[1] ? 1.0 : 0.0, wall[1], krylov});
+    }
+    out.write_text("coupling_stability.csv", csv.text());
+    fig["largest_stable_dt_explicit"] = largest[0];
+    fig["largest_stable_dt_semi_implicit"] = largest[1];
+    fig["stable_step_ratio"] = largest[0] > 0 ? largest[1] / largest[0] : 0.0;
+    fig["bell_modulus"] = base.jellyfish.bell_modulus_pa;
+    fig["runs"] = runs;
+    write_summary(out, "experiment coupling-stability", ctx.config, fig, "");
+    return Outcome{};
+  };
+}
+
+Experiment with_base(Experiment e) {
+  e.base_path = "scenes/jellyfish.toml";
+  return e;
+}
+
+}  // namespace
+
+Experiment oval_membrane_experiment() {
+  return {"oval-membrane", "Stockie & Wetton's oval membrane: area kept by the immersed boundary (Figs 8.8/8.9)",
+          "experiments/oval-membrane.toml", prepare_oval_membrane};
+}
+Experiment kinematics_experiment() {
+  return with_base({"kinematics", "Position, velocity and acceleration of the 4 cm jellyfish at 0.7 Hz (Figs 8.15-8.17)",
+                    "experiments/kinematics.toml",
+                    [](const Context& c) { return prepare_swim_study(c, "kinematics"); }});
+}
+Experiment morphology_experiment() {
+  return with_base({"morphology", "Bell volume and aperture area over the cycle, normalised (Fig. 8.18, Fig. 6.10)",
+                    "experiments/morphology.toml",
+                    [](const Context& c) { return prepare_swim_study(c, "morphology"); }});
+}
+Experiment structural_instability_experiment() {
+  return with_base({"structural-instability", "A too-soft bell (1.186e4 Pa) deforms beyond repair (Fig. 8.11)",
+                    "experiments/structural-instability.toml",
+                    [](const Context& c) { return prepare_instability(c, "structural-instability"); }});
+}
+Experiment numerical_instability_experiment() {
+  return with_base({"numerical-instability", "A too-stiff bell (1.186e6 Pa) with explicit coupling blows up (Fig. 8.12)",
+                    "experiments/numerical-instability.toml",
+                    [](const Context& c) { return prepare_instability(c, "numerical-instability"); }});
+}
+Experiment frequency_sweep_experiment() {
+  return with_base({"frequency-sweep", "Distance travelled versus contraction frequency, in parallel (Figs 8.13/8.14; `jellysim sweep`)",
+                    "experiments/frequency-sweep.toml", prepare_sweep});
+}
+Experiment fluidless_experiment() {
+  return with_base({"fluidless", "The jellyfish without a fluid: drag and a dV/dt pressure (section 8.2.3)",
+                    "experiments/fluidless.toml", prepare_fluidless});
+}
+Experiment coupling_stability_experiment() {
+  return with_base({"coupling-stability", "Largest stable step of the explicit and the semi-implicit coupling",
+                    "experiments/coupling-stability.toml", prepare_coupling_stability});
+}
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,80 @@
+// Thesis Figure 8.19: the stages from the 2D slice to the noisy 3D jellyfish, expanded and
+// contracted, as one picture. Uses synthetic slices until simulated frames are fed in;
+// render::render_stages_picture takes any two SliceFrames.
+#include <chrono>
+
+#include "experiments/experiment.hpp"
+#include "geometry/synthetic_bell.hpp"
+#include "io/errors.hpp"
+#include "render/animation_outputs.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+struct StagesSetup {
+  geometry::SyntheticBell bell;
+  double contracted = 0.9;
+  int panel_width = 360, panel_height = 300;
+  render::PipelineSettings pipeline;
+};
+
+StagesSetup read_setup(const io::Config& c) {
+  StagesSetup s;
+  s.bell.diameter_m = c.number("bell.diameter", io::Range::positive());
+  s.bell.height_m = c.number("bell.height", io::Range::positive());
+  s.bell.thickness_m = c.number("bell.thickness", io::Range::positive());
+  s.contracted = c.number("bell.contracted", io::Range::closed(0.0, 1.0));
+  s.bell.umbrella_points = static_cast<int>(c.integer("bell.umbrella_points", 5, 10001));
+  if (s.bell.umbrella_points % 2 == 0)
+    throw InputError("field 'bell.umbrella_points' = " + std::to_string(s.bell.umbrella_points) + " must be odd");
+  s.bell.tentacle_points = static_cast<int>(c.integer("bell.tentacle_points", 2, 10000));
+  s.bell.tentacle_length_m = c.number("bell.tentacle_length", io::Range::positive());
+  s.panel_width = static_cast<int>(c.integer("output.panel_width", 64, 2048));
+  s.panel_height = static_cast<int>(c.integer("output.panel_height", 64, 2048));
+  s.pipeline = render::pipeline_settings_from_config(c, "render");
+  s.bell.max_contraction = s.pipeline.geometry.noise.max_contraction;
+  return s;
+}
+
+Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::OutputDir& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  geometry::SyntheticBell expanded = s.bell, contracted = s.bell;
+  expanded.contraction = 0.0;
+  contracted.contraction = s.contracted;
+  const jellyfish::SliceFrame a = geometry::synthetic_bell(expanded), b = geometry::synthetic_bell(contracted);
+  const render::RgbImage picture = render::render_stages_picture(a, b, s.pipeline, s.panel_width, s.panel_height);
+  const auto tmp = out.temporary_for("stages.png");
+  render::write_png(picture, tmp);
+  out.commit(tmp, "stages.png");
+  const geometry::GeometryBuilder builder(s.pipeline.geometry, geometry::resolve_noise_length(s.pipeline.geometry.noise, a));
+  const geometry::FrameGeometry g = builder.build(a);
+  nlohmann::ordered_json figures;
+  figures["stages"] = render::stage_names();
+  figures["columns"] = {"expanded", "contracted"};
+  figures["picture"] = "stages.png";
+  figures["picture_size_px"] = {picture.width, picture.height};
+  figures["noise_length_scale_m"] = builder.length_scale_m();
+  figures["vertices_per_frame"] = g.mesh.vertex_count();
+  figures["triangles_per_frame"] = g.mesh.triangle_count();
+  figures["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_summary(out, "experiment stages", config, figures, "");
+  return {};
+}
+
+}  // namespace
+
+Experiment stages_experiment() {
+  Experiment e;
+  e.name = "stages";
+  e.description = "Figure 8.19: each stage from 2D slice to noisy 3D jellyfish, expanded and contracted (stages.png)";
+  e.definition_path = "experiments/stages.toml";
+  e.prepare = [](const Context& ctx) {
+    const StagesSetup setup = read_setup(ctx.config);
+    const io::Config config = ctx.config;
+    return std::function<Outcome(const io::OutputDir&)>(
+        [setup, config](const io::OutputDir& out) { return run_stages(setup, config, out); });
+  };
+  return e;
+}
+
+}  // namespace jellysim::experiments

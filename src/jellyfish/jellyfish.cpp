@@ -1,0 +1,242 @@
+#include "jellyfish/jellyfish.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "elastic/forces.hpp"
+
+namespace jellysim::jellyfish {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void require(bool ok, const std::string& field, const std::string& range) {
+  if (!ok) throw std::invalid_argument("field 'jellyfish." + field + "' is out of range " + range);
+}
+
+/// Eq. 7.1 (corrected, see docs/physics.md): κ_l = λ A / l_r.
+double stiffness(double modulus_pa, double area_m2, double rest_length_m) {
+  return elastic::linear_stiffness_from_modulus(modulus_pa, area_m2, rest_length_m);
+}
+
+/// Outward normals of a polyline (eq. 7.6 with the sign chosen away from the cavity): the bell
+/// runs left tip → apex → right tip, i.e. clockwise seen from inside, so the outward side is the
+/// left-hand normal of the tangent.
+std::vector<Vec2> outward_normals(const std::vector<Vec2>& p) {
+  std::vector<Vec2> n(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2 a = p[i == 0 ? 0 : i - 1], b = p[i + 1 == p.size() ? i : i + 1];
+    const Vec2 t = b - a;
+    n[i] = perp(t) / norm(t);
+  }
+  return n;
+}
+
+}  // namespace
+
+std::vector<Vec2> bell_profile(double diameter_m, double height_m, int segments_per_side) {
+  const double r = 0.5 * diameter_m;
+  auto at = [&](double phi) { return Vec2{r * std::sin(phi), height_m * std::cos(phi)}; };
+  // Arc-length table of the right quarter φ ∈ [0, π/2] (apex to tip); the left side is its exact
+  // mirror image, so a symmetric bell starts symmetric to the last bit.
+  const int samples = 4096;
+  std::vector<double> arc(samples + 1, 0.0);
+  for (int k = 1; k <= samples; ++k) {
+    const double p0 = 0.5 * std::numbers::pi * (k - 1) / samples, p1 = 0.5 * std::numbers::pi * k / samples;
+    arc[k] = arc[k - 1] + norm(at(p1) - at(p0));
+  }
+  std::vector<Vec2> right;  // apex first
+  for (int i = 0; i <= segments_per_side; ++i) {
+    const double target = arc.back() * i / segments_per_side;
+    const auto it = std::lower_bound(arc.begin(), arc.end(), target);
+    const int k = std::clamp(static_cast<int>(it - arc.begin()), 1, samples);
+    const double w = std::clamp((target - arc[k - 1]) / std::max(arc[k] - arc[k - 1], 1e-300), 0.0, 1.0);
+    right.push_back(at(0.5 * std::numbers::pi * (k - 1 + w) / samples));
+  }
+  right.front() = {0.0, height_m};
+  right.back() = {r, 0.0};
+  std::vector<Vec2> points;
+  for (int i = segments_per_side; i >= 1; --i) points.push_back({-right[static_cast<std::size_t>(i)].x, right[static_cast<std::size_t>(i)].y});
+  points.insert(points.end(), right.begin(), right.end());
+  return points;
+}
+
+bool polyline_self_intersects(const std::vector<Vec2>& p) {
+  auto crosses = [](Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+    const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+    return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+  };
+  for (std::size_t i = 0; i + 1 < p.size(); ++i)
+    for (std::size_t j = i + 2; j + 1 < p.size(); ++j)
+      if (crosses(p[i], p[i + 1], p[j], p[j + 1])) return true;
+  return false;
+}
+
+void validate(const JellyfishSpec& s) {
+  require(s.diameter_m > 0, "diameter", "(0, inf) m");
+  require(s.height_m > 0, "height", "(0, inf) m");
+  require(s.tentacle_length_m >= 0, "tentacle_length", "[0, inf) m");
+  require(s.thickness_m > 0, "thickness", "(0, inf) m");
+  require(s.max_spacing_m > 0, "max_spacing", "(0, inf) m");
+  require(s.min_segments_per_side >= 2 && s.min_segments_per_side <= 1000, "min_segments_per_side", "[2, 1000]");
+  require(s.bell_modulus_pa > 0, "bell_modulus", "(0, inf) Pa");
+  require(s.muscle_modulus_pa >= 0, "muscle_modulus", "[0, inf) Pa");
+  require(s.bending_factor >= 0, "bending_factor", "[0, inf)");
+  require(s.tentacle_bending_factor >= 0, "tentacle_bending_factor", "[0, inf)");
+  require(s.tentacle_volume_fraction > 0, "tentacle_volume_fraction", "(0, inf)");
+  require(s.frequency_hz > 0 && s.frequency_hz <= 100, "frequency", "(0, 100] Hz");
+  require(s.gamma > 0 && s.gamma <= 1, "gamma", "(0, 1]");
+  require(s.profile.contract_fraction > 0 && s.profile.contract_fraction < 1, "contract_fraction", "(0, 1)");
+  require(s.aperture_expansion_exponent >= 1 && s.aperture_expansion_exponent <= 10, "aperture_expansion_exponent",
+          "[1, 10]");
+  require(s.neural_delay_s >= 0, "neural_delay", "[0, inf) s");
+  require(s.profile.trochoid_skew >= 0 && s.profile.trochoid_skew < 1, "trochoid_skew", "[0, 1)");
+}
+
+Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
+  validate(spec_);
+  const JellyfishSpec& s = spec_;
+  // Segments per side so that neighbouring markers are at most max_spacing apart.
+  const std::vector<Vec2> fine = bell_profile(s.diameter_m, s.height_m, 256);
+  double half_arc = 0.0;
+  for (std::size_t i = 0; i + 1 <= 256; ++i) half_arc += norm(fine[i + 1] - fine[i]);
+  const int m = std::max(s.min_segments_per_side, static_cast<int>(std::ceil(half_arc / s.max_spacing_m)));
+  const double spacing = half_arc / m;
+  std::vector<Vec2> profile = bell_profile(s.diameter_m, s.height_m, m);
+  for (Vec2& p : profile) p = s.aperture_centre_m + rotated(p, s.tilt_rad);
+  const int n = static_cast<int>(profile.size());
+
+  // Umbrella: the subumbrellar string (§7.1).
+  const double area_bell = s.thickness_m * s.thickness_m;  // A = ϑ² for tangential springs
+  for (Vec2 p : profile) layout_.umbrella.push_back(body_.add_point(p, s.point_mass_kg));
+  layout_.apex = m;
+  const auto& u = layout_.umbrella;
+  auto add_spring = [&](int a, int b, double modulus, double area) {
+    const double l = norm(body_.points.position[b] - body_.points.position[a]);
+    body_.add_linear_spring(a, b, stiffness(modulus, area, l), l);
+    return static_cast<int>(body_.linear.size()) - 1;
+  };
+  auto add_joint = [&](int a, int b, int c, double linear_stiffness, double segment, double factor) {
+    if (factor > 0) body_.add_angular_spring(a, b, c, factor * linear_stiffness * segment * segment, kNaN);
+  };
+  if (s.model == UmbrellaModel::angular) {
+    for (int i = 0; i + 1 < n; ++i) add_spring(u[i], u[i + 1], s.bell_modulus_pa, area_bell);
+    for (int i = 1; i + 1 < n; ++i) add_joint(u[i - 1], u[i], u[i + 1], stiffness(s.bell_modulus_pa, area_bell, spacing), spacing, s.bending_factor);
+  } else {
+    // Fig. 7.2 left: a second (exumbrellar) row one spacing outside, quads with crossing diagonals.
+    const std::vector<Vec2> normals = outward_normals(profile);
+    const double depth = std::max(s.thickness_m, spacing);
+    for (int i = 0; i < n; ++i)
+      layout_.exumbrella.push_back(body_.add_point(profile[static_cast<std::size_t>(i)] + depth * normals[static_cast<std::size_t>(i)], s.point_mass_kg));
+    const auto& e = layout_.exumbrella;
+    for (int i = 0; i < n; ++i) {
+      add_spring(u[i], e[i], s.bell_modulus_pa, area_bell);
+      if (i + 1 == n) break;
+      add_spring(u[i], u[i + 1], s.bell_modulus_pa, area_bell);
+      add_spring(e[i], e[i + 1], s.bell_modulus_pa, area_bell);
+      add_spring(u[i], e[i + 1], s.bell_modulus_pa, area_bell);
+      add_spring(e[i], u[i + 1], s.bell_modulus_pa, area_bell);
+    }
+  }
+
+  // Subumbrellar muscles between opposing points, aperture first (§7.1).
+  const int muscles = std::max(1, m - 1);
+  std::vector<Vec2> mids;
+  for (int k = 0; k < muscles; ++k) mids.push_back(0.5 * (profile[static_cast<std::size_t>(k)] + profile[static_cast<std::size_t>(n - 1 - k)]));
+  for (int k = 0; k < muscles; ++k) {
+    // A = square of the mean distance to the neighbouring muscle springs (§7.1).
+    double gap = 0.0;
+    int count = 0;
+    if (k > 0) gap += norm(mids[static_cast<std::size_t>(k)] - mids[static_cast<std::size_t>(k - 1)]), ++count;
+    if (k + 1 < muscles) gap += norm(mids[static_cast<std::size_t>(k + 1)] - mids[static_cast<std::size_t>(k)]), ++count;
+    gap = count > 0 ? gap / count : spacing;
+    const int spring = add_spring(u[k], u[n - 1 - k], s.muscle_modulus_pa, gap * gap);
+    layout_.muscle_springs.push_back(spring);
+    layout_.muscle_uncontracted_m.push_back(body_.linear.rest_length[static_cast<std::size_t>(spring)]);
+    // Springs near the aperture re-expand more slowly (Fig. 7.5): exponent from p_aperture to 1.
+    ContractionProfile p = s.profile;
+    const double toward_apex = muscles > 1 ? static_cast<double>(k) / (muscles - 1) : 1.0;
+    p.expansion_exponent = s.aperture_expansion_exponent + (1.0 - s.aperture_expansion_exponent) * toward_apex;
+    layout_.muscle_profiles.push_back(p);
+    // The impulse starts at the margin and travels toward the apex (§6.2); each spring gets half
+    // of the largest delay of its band (§7.1).
+    layout_.muscle_delay_s.push_back(0.5 * s.neural_delay_s * static_cast<double>(k) / m);
+  }
+  controllers_.resize(layout_.muscle_springs.size());
+
+  // Tentacles hang from both aperture tips, away from the apex.
+  const int tentacle_points = s.tentacle_length_m > 0 ? std::max(2, static_cast<int>(std::ceil(s.tentacle_length_m / spacing))) : 0;
+  const double t_spacing = tentacle_points > 0 ? s.tentacle_length_m / tentacle_points : 0.0;
+  const double area_tentacle = s.tentacle_volume_fraction * area_bell;
+  const Vec2 down = -initial_axis();
+  for (int side = 0; side < 2 && tentacle_points > 0; ++side) {
+    const int tip = side == 0 ? u.front() : u.back();
+    const int inner = side == 0 ? u[1] : u[static_cast<std::size_t>(n - 2)];
+    std::vector<int> strand{tip};
+    for (int k = 1; k <= tentacle_points; ++k)
+      strand.push_back(body_.add_point(body_.points.position[static_cast<std::size_t>(tip)] + (k * t_spacing) * down, s.point_mass_kg * s.tentacle_volume_fraction));
+    const double kt = stiffness(s.bell_modulus_pa, area_tentacle, t_spacing);
+    for (std::size_t k = 0; k + 1 < strand.size(); ++k) add_spring(strand[k], strand[k + 1], s.bell_modulus_pa, area_tentacle);
+    add_joint(inner, tip, strand[1], kt, t_spacing, s.tentacle_bending_factor);
+    for (std::size_t k = 1; k + 1 < strand.size(); ++k)
+      add_joint(strand[k - 1], strand[k], strand[k + 1], kt, t_spacing, s.tentacle_bending_factor);
+    layout_.tentacles.push_back(strand);
+  }
+  actuate(0.0);
+}
+
+double Jellyfish::muscle_activation(std::size_t k, double t) const {
+  const double phase = spec_.frequency_hz * (t - layout_.muscle_delay_s[k]) + spec_.phase_cycles;
+  return contraction_value(layout_.muscle_profiles[k], phase);
+}
+
+void Jellyfish::actuate(double t) {
+  for (std::size_t k = 0; k < layout_.muscle_springs.size(); ++k) {
+    const auto spring = static_cast<std::size_t>(layout_.muscle_springs[k]);
+    const double l_ru = layout_.muscle_uncontracted_m[k];
+    if (spec_.closed_loop) {
+      const auto& x = body_.points.position;
+      const double length = norm(x[static_cast<std::size_t>(body_.linear.j[spring])] - x[static_cast<std::size_t>(body_.linear.i[spring])]);
+      body_.linear.rest_length[spring] =
+          controllers_[k].update(t - layout_.muscle_delay_s[k] + spec_.phase_cycles / spec_.frequency_hz, length, l_ru,
+                                 body_.linear.rest_length[spring], spec_.gamma, spec_.frequency_hz,
+                                 spec_.profile.contract_fraction);
+    } else {
+      body_.linear.rest_length[spring] = contracted_rest_length(l_ru, spec_.gamma, muscle_activation(k, t));
+    }
+  }
+}
+
+std::vector<Vec2> Jellyfish::umbrella_points() const {
+  std::vector<Vec2> p;
+  for (int i : layout_.umbrella) p.push_back(body_.points.position[static_cast<std::size_t>(i)]);
+  return p;
+}
+
+SliceFrame Jellyfish::slice_frame(double t) const {
+  SliceFrame f;
+  f.time_s = t;
+  f.umbrella = umbrella_points();
+  for (const auto& strand : layout_.tentacles) {
+    std::vector<Vec2> line;
+    for (int i : strand) line.push_back(body_.points.position[static_cast<std::size_t>(i)]);
+    f.tentacles.push_back(std::move(line));
+  }
+  const int n = static_cast<int>(f.umbrella.size());
+  for (std::size_t k = 0; k < layout_.muscle_springs.size(); ++k) {
+    const int a = static_cast<int>(k), b = n - 1 - static_cast<int>(k);
+    f.muscles.push_back({a, b, norm(f.umbrella[static_cast<std::size_t>(b)] - f.umbrella[static_cast<std::size_t>(a)]),
+                         layout_.muscle_uncontracted_m[k]});
+  }
+  f.thickness_m = spec_.thickness_m;
+  const Vec2 aperture = 0.5 * (f.umbrella.front() + f.umbrella.back());
+  const Vec2 axis = f.umbrella[static_cast<std::size_t>(layout_.apex)] - aperture;
+  f.axis = norm(axis) > 0 ? axis / norm(axis) : initial_axis();
+  return f;
+}
+
+}  // namespace jellysim::jellyfish

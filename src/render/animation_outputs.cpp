@@ -1,0 +1,400 @@
+#include "render/animation_outputs.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "geometry/rendering_model.hpp"
+#include "io/errors.hpp"
+#include "io/mesh_files.hpp"
+#include "render/video.hpp"
+
+#ifndef JELLYSIM_WEB_DIR
+#define JELLYSIM_WEB_DIR "web"
+#endif
+
+namespace jellysim::render {
+
+using geometry::Vec3;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string frame_name(std::size_t k, const char* extension) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%04zu.%s", k, extension);
+  return buf;
+}
+
+geometry::NoiseSettings read_noise(const io::Config& c, const std::string& p) {
+  geometry::NoiseSettings n;
+  n.seed = static_cast<std::uint64_t>(c.integer(p + "seed", 0, std::numeric_limits<std::int64_t>::max()));
+  n.structural_weight = c.number(p + "structural_weight", io::Range::non_negative());
+  n.compression_weight = c.number(p + "compression_weight", io::Range::non_negative());
+  n.unstructured_weight = c.number(p + "unstructured_weight", io::Range::non_negative());
+  n.structural_frequency = c.number(p + "structural_frequency", io::Range::closed(0.0, 1000.0));
+  n.structural_absolute = c.choice(p + "structural_form", {"abs", "sin"}) == "abs";
+  n.compression_frequency = c.number(p + "compression_frequency", io::Range::closed(0.0, 1000.0));
+  n.max_contraction = c.number(p + "max_contraction", {0.0, 1.0, true, true});
+  n.latitude_frequency = c.number(p + "latitude_frequency", io::Range::closed(0.0, 1000.0));
+  n.longitude_frequency = c.number(p + "longitude_frequency", io::Range::closed(0.0, 1000.0));
+  n.time_frequency_hz = c.number(p + "time_frequency", io::Range::closed(0.0, 1000.0));
+  n.length_scale_m = c.number(p + "length_scale", io::Range::non_negative());
+  n.tentacles = c.boolean(p + "tentacles");
+  n.bend_shell = c.boolean(p + "bend_shell");
+  return n;
+}
+
+/// The umbrella's vertex range (part "umbrella" uses vertices from 0) — the camera frames it.
+Vec3 umbrella_centre(const geometry::FrameGeometry& g) {
+  Vec3 lo = g.mesh.positions[0], hi = lo;
+  for (std::uint32_t v = 0; v < g.umbrella.vertex_count(); ++v) {
+    const Vec3 p = g.mesh.positions[v];
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return 0.5 * (lo + hi);
+}
+
+Vec3 view_direction(const PipelineSettings& s) {
+  const double el = s.camera_elevation_deg * std::numbers::pi / 180.0;
+  const double az = s.camera_azimuth_deg * std::numbers::pi / 180.0;
+  return {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+}
+
+/// Follows the jellyfish: the target moves a fraction of the way toward the umbrella's centre
+/// (shifted down to take in the tentacles) each frame; distance and direction stay fixed.
+class FollowCamera {
+ public:
+  FollowCamera(const PipelineSettings& s, const geometry::Mesh& first) : settings_(s) {
+    const geometry::Bounds b = geometry::bounds(first);
+    const Vec3 size = b.max - b.min;
+    extent_ = std::max({size.x, size.y, size.z});
+  }
+  Camera next(const geometry::FrameGeometry& g) {
+    const Vec3 goal = umbrella_centre(g) - Vec3{0.0, 0.15 * extent_, 0.0};
+    target_ = started_ ? target_ + settings_.camera_follow * (goal - target_) : goal;
+    started_ = true;
+    return camera_looking_at(target_, view_direction(settings_), settings_.camera_distance * extent_,
+                             settings_.fov_y_deg);
+  }
+
+ private:
+  const PipelineSettings& settings_;
+  double extent_ = 1.0;
+  Vec3 target_;
+  bool started_ = false;
+};
+
+std::string base64(const std::string& bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const auto b0 = static_cast<unsigned char>(bytes[i]);
+    const auto b1 = i + 1 < bytes.size() ? static_cast<unsigned char>(bytes[i + 1]) : 0u;
+    const auto b2 = i + 2 < bytes.size() ? static_cast<unsigned char>(bytes[i + 2]) : 0u;
+    const unsigned v = (b0 << 16) | (b1 << 8) | b2;
+    out += kAlphabet[(v >> 18) & 63];
+    out += kAlphabet[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[v & 63] : '=';
+  }
+  return out;
+}
+
+constexpr const char* kViewerHtml = R"(<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>jellysim — jellyfish</title>
+<style>
+  html, body { margin: 0; height: 100%; overflow: hidden; background: #021522; color: #cfe6ef; font: 13px sans-serif; }
+  #info { position: absolute; left: 12px; top: 10px; pointer-events: none; }
+</style>
+</head>
+<body>
+<div id="info">jellysim: drag to orbit, scroll to zoom, space to pause</div>
+<!-- Works offline and from file://: the animation is embedded in jellyfish.glb.js (base64 of
+     jellyfish.glb) and three.js is bundled in jellyfish-viewer.js (web/ in the jellysim sources). -->
+<script src="jellyfish.glb.js"></script>
+<script src="jellyfish-viewer.js"></script>
+<script>
+  if (window.JellyfishViewer) {
+    JellyfishViewer.start({ glbBase64: window.JELLYSIM_GLB_BASE64, glbUrl: "jellyfish.glb" });
+  } else {
+    document.getElementById("info").textContent =
+      "jellyfish-viewer.js is missing: build it with `npm ci && npm run build` in jellysim's web/ folder.";
+  }
+</script>
+</body>
+</html>
+)";
+
+std::vector<io::GlbMaterial> glb_materials(const RenderStyle& s) {
+  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}};
+}
+
+void write_viewer(const PipelineSettings& s, const std::string& glb, const io::OutputDir& out,
+                  AnimationOutputs& result) {
+  out.write_text("viewer.html", kViewerHtml);
+  out.write_text("jellyfish.glb.js", "window.JELLYSIM_GLB_BASE64 = \"" + base64(glb) + "\";\n");
+  result.files.insert(result.files.end(), {"viewer.html", "jellyfish.glb.js"});
+  std::ifstream script(s.viewer_script, std::ios::binary);
+  if (!script) return;
+  std::stringstream text;
+  text << script.rdbuf();
+  out.write_text("jellyfish-viewer.js", text.str());
+  result.files.push_back("jellyfish-viewer.js");
+  result.viewer_has_script = true;
+}
+
+}  // namespace
+
+std::filesystem::path default_viewer_script() {
+  return std::filesystem::path(JELLYSIM_WEB_DIR) / "dist" / "jellyfish-viewer.js";
+}
+
+PipelineSettings pipeline_settings_from_config(const io::Config& c, const std::string& section) {
+  const std::string p = section + ".";
+  PipelineSettings s;
+  geometry::GeometrySettings& g = s.geometry;
+  s.width_px = static_cast<int>(c.integer(p + "width", 16, 8192));
+  s.height_px = static_cast<int>(c.integer(p + "height", 16, 8192));
+  s.fps = c.number(p + "fps", {0.0, 240.0, true, false});
+  g.latitude_samples = static_cast<int>(c.integer(p + "latitude_samples", 5, 100001));
+  if (g.latitude_samples % 2 == 0)
+    throw InputError("field '" + p + "latitude_samples' = " + std::to_string(g.latitude_samples) + " must be odd");
+  g.disc_points = static_cast<int>(c.integer(p + "disc_points", 8, 100000));
+  g.tentacle_samples = static_cast<int>(c.integer(p + "tentacle_samples", 2, 100000));
+  g.tentacle_count = static_cast<int>(c.integer(p + "tentacle_count", 1, 10000));
+  g.tube_sides = static_cast<int>(c.integer(p + "tube_sides", 3, 64));
+  g.tentacle_radius_m = c.number(p + "tentacle_radius", io::Range::positive());
+  g.interpolant = geometry::parse_interpolant(c.choice(p + "interpolant", {"thesis", "catmull-rom"}), p + "interpolant");
+  g.noise = read_noise(c, p + "noise.");
+  s.camera_distance = c.number(p + "camera_distance", io::Range::positive());
+  s.camera_elevation_deg = c.number(p + "camera_elevation_deg", io::Range::closed(-89.0, 89.0));
+  s.camera_azimuth_deg = c.number(p + "camera_azimuth_deg", io::Range::closed(-360.0, 360.0));
+  s.camera_follow = c.number(p + "camera_follow", {0.0, 1.0, true, false});
+  s.fov_y_deg = c.number(p + "fov_deg", io::Range::closed(5.0, 120.0));
+  s.style.umbrella[3] = c.number(p + "umbrella_opacity", io::Range::closed(0.0, 1.0));
+  s.style.tentacles[3] = c.number(p + "tentacle_opacity", io::Range::closed(0.0, 1.0));
+  s.style.rim = c.number(p + "rim", io::Range::closed(0.0, 1.0));
+  s.png_frames = c.boolean(p + "png_frames");
+  s.video = c.boolean(p + "video");
+  s.glb = c.boolean(p + "glb");
+  s.obj = c.boolean(p + "obj");
+  s.ply = c.boolean(p + "ply");
+  s.viewer = c.boolean(p + "viewer");
+  if (s.viewer && !s.glb) throw InputError("field '" + p + "viewer' = true needs '" + p + "glb' = true");
+  s.viewer_script = default_viewer_script();
+  geometry::validate_geometry_settings(g);
+  return s;
+}
+
+nlohmann::ordered_json AnimationOutputs::figures() const {
+  nlohmann::ordered_json j;
+  j["frames"] = frames;
+  j["vertices_per_frame"] = vertices;
+  j["triangles_per_frame"] = triangles;
+  j["geometry_ms_per_frame"] = 1e3 * geometry_seconds_per_frame;
+  j["render_ms_per_frame"] = 1e3 * render_seconds_per_frame;
+  j["glb_bytes"] = glb_bytes;
+  j["renderer"] = renderer;
+  j["viewer_has_script"] = viewer_has_script;
+  j["files"] = files;
+  return j;
+}
+
+AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame>& frames,
+                                         const PipelineSettings& s, const io::OutputDir& out,
+                                         const FrameProgress& progress) {
+  if (frames.empty()) throw InputError("no slice frames to render");
+  const geometry::GeometryBuilder builder(s.geometry, geometry::resolve_noise_length(s.geometry.noise, frames.front()));
+  const bool pixels = s.png_frames || s.video;
+  std::unique_ptr<OffscreenRenderer> renderer;
+  if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px);
+  std::unique_ptr<Mp4Writer> video;
+  const auto video_tmp = out.temporary_for("jellyfish.mp4");
+  if (s.video) video = std::make_unique<Mp4Writer>(video_tmp, s.width_px, s.height_px, s.fps);
+  const io::OutputDir frame_dir(out.file("frames")), mesh_dir(out.file("meshes"));
+
+  AnimationOutputs result;
+  result.renderer = renderer ? renderer->renderer_name() : "";
+  geometry::Animation animation;
+  std::unique_ptr<FollowCamera> camera;
+  double geometry_s = 0.0, render_s = 0.0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    auto t0 = Clock::now();
+    geometry::FrameGeometry g = builder.build(frames[k]);
+    geometry_s += seconds_since(t0);
+    if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
+      throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
+    if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);
+    const Camera view = camera->next(g);
+    if (pixels) {
+      t0 = Clock::now();
+      const RgbImage image = renderer->render(g.mesh, view, s.style);
+      render_s += seconds_since(t0);
+      if (s.png_frames) {
+        const std::string name = frame_name(k, "png");
+        const auto tmp = frame_dir.temporary_for(name);
+        write_png(image, tmp);
+        frame_dir.commit(tmp, name);
+        result.files.push_back("frames/" + name);
+      }
+      if (video) video->add(image);
+    }
+    const std::string comment = "jellysim frame " + std::to_string(k) + " t = " + io::format_double(frames[k].time_s) + " s";
+    if (s.obj) {
+      mesh_dir.write_text(frame_name(k, "obj"), io::obj_text(g.mesh, comment));
+      result.files.push_back("meshes/" + frame_name(k, "obj"));
+    }
+    if (s.ply) {
+      mesh_dir.write_text(frame_name(k, "ply"), io::ply_bytes(g.mesh, comment));
+      result.files.push_back("meshes/" + frame_name(k, "ply"));
+    }
+    result.vertices = g.mesh.vertex_count();
+    result.triangles = g.mesh.triangle_count();
+    animation.times_s.push_back(frames[k].time_s);
+    animation.frames.push_back(std::move(g.mesh));
+    if (progress) progress(k + 1, frames.size());
+  }
+  if (video) {
+    video->finish();
+    out.commit(video_tmp, "jellyfish.mp4");
+    result.files.push_back("jellyfish.mp4");
+  }
+  if (s.glb) {
+    const std::string glb = io::glb_bytes(animation, glb_materials(s.style));
+    out.write_text("jellyfish.glb", glb);
+    result.files.push_back("jellyfish.glb");
+    result.glb_bytes = glb.size();
+    if (s.viewer) write_viewer(s, glb, out, result);
+  }
+  result.frames = frames.size();
+  result.geometry_seconds_per_frame = geometry_s / static_cast<double>(frames.size());
+  result.render_seconds_per_frame = pixels ? render_s / static_cast<double>(frames.size()) : 0.0;
+  return result;
+}
+
+// ---- Figure 8.19 ------------------------------------------------------------------------------
+
+namespace {
+
+constexpr Rgb kPanelBackground{8, 30, 48};
+constexpr Rgb kLabel{214, 232, 240};
+
+/// Maps slice coordinates (m) into a panel with equal scales, y up.
+struct SliceView {
+  Vec2 centre;
+  double pixels_per_m = 1.0;
+  int width = 0, height = 0;
+  Vec2 operator()(Vec2 p) const {
+    return {0.5 * width + (p.x - centre.x) * pixels_per_m, 0.5 * height - (p.y - centre.y) * pixels_per_m};
+  }
+};
+
+void draw_polyline(RgbImage& img, const SliceView& v, const std::vector<Vec2>& pts, double width, Rgb c) {
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    const Vec2 a = v(pts[i - 1]), b = v(pts[i]);
+    draw_segment(img, a.x, a.y, b.x, b.y, width, c);
+  }
+}
+
+RgbImage physics_panel(const jellyfish::SliceFrame& f, const SliceView& v) {
+  RgbImage img(v.width, v.height, kPanelBackground);
+  for (const auto& m : f.muscles) {
+    const Vec2 a = v(f.umbrella[static_cast<std::size_t>(m.a)]), b = v(f.umbrella[static_cast<std::size_t>(m.b)]);
+    draw_segment(img, a.x, a.y, b.x, b.y, 1.0, {200, 90, 90});
+  }
+  draw_polyline(img, v, f.umbrella, 1.6, {170, 210, 230});
+  for (const auto& t : f.tentacles) {
+    draw_polyline(img, v, t, 1.2, {230, 170, 190});
+    for (const Vec2& p : t) draw_disc(img, v(p).x, v(p).y, 2.0, {230, 170, 190});
+  }
+  for (const Vec2& p : f.umbrella) draw_disc(img, v(p).x, v(p).y, 2.6, {240, 250, 255});
+  return img;
+}
+
+RgbImage rendering_model_panel(const jellyfish::SliceFrame& f, const PipelineSettings& s, const SliceView& v) {
+  RgbImage img(v.width, v.height, kPanelBackground);
+  const geometry::RenderingSlice r = geometry::make_rendering_slice(f, s.geometry.latitude_samples,
+                                                                    s.geometry.tentacle_samples, s.geometry.interpolant);
+  std::vector<Vec2> hull = geometry::closed_hull(r.subumbrella, r.exumbrella);
+  hull.push_back(hull.front());
+  draw_polyline(img, v, hull, 1.6, {190, 225, 240});
+  for (const auto& t : r.tentacles) draw_polyline(img, v, t, 1.2, {230, 170, 190});
+  return img;
+}
+
+/// The geometry settings of one 3D stage: no noise, one kind, or all.
+geometry::GeometrySettings stage_geometry(const PipelineSettings& s, int stage) {
+  geometry::GeometrySettings g = s.geometry;
+  geometry::NoiseSettings& n = g.noise;
+  if (stage != 6) {
+    n.structural_weight = stage == 3 ? s.geometry.noise.structural_weight : 0.0;
+    n.unstructured_weight = stage == 4 ? s.geometry.noise.unstructured_weight : 0.0;
+    n.compression_weight = stage == 5 ? s.geometry.noise.compression_weight : 0.0;
+  }
+  return g;
+}
+
+}  // namespace
+
+std::vector<std::string> stage_names() {
+  return {"2D physics model", "2D rendering model", "Extrapolated to 3D", "Structural noise",
+          "Perlin noise", "Compression noise", "All noises"};
+}
+
+RgbImage render_stages_picture(const jellyfish::SliceFrame& expanded, const jellyfish::SliceFrame& contracted,
+                               const PipelineSettings& s, int panel_w, int panel_h) {
+  geometry::validate_slice(expanded);
+  geometry::validate_slice(contracted);
+  const double length = geometry::resolve_noise_length(s.geometry.noise, expanded);
+  const jellyfish::SliceFrame* slices[2] = {&expanded, &contracted};
+  const int label_w = 230, header_h = 40, gap = 6;
+  const auto names = stage_names();
+  const int rows = static_cast<int>(names.size());
+  RgbImage picture(label_w + 2 * (panel_w + gap), header_h + rows * (panel_h + gap), {2, 14, 24});
+  draw_text(picture, label_w + panel_w / 2 - 48, 12, "Expanded", 2, kLabel);
+  draw_text(picture, label_w + panel_w + gap + panel_w / 2 - 60, 12, "Contracted", 2, kLabel);
+  for (int r = 0; r < rows; ++r) draw_text(picture, 10, header_h + r * (panel_h + gap) + panel_h / 2 - 8, names[static_cast<std::size_t>(r)], 2, kLabel);
+
+  // One 2D view and one camera for every panel, so the panels compare.
+  geometry::GeometrySettings plain = stage_geometry(s, 2);
+  const geometry::FrameGeometry reference = geometry::GeometryBuilder(plain, length).build(expanded);
+  const geometry::Bounds b = geometry::bounds(reference.mesh);
+  const Vec3 size = b.max - b.min;
+  const double extent = std::max({size.x, size.y, size.z});
+  const Vec2 centre{0.5 * (b.min.x + b.max.x), 0.5 * (b.min.y + b.max.y)};
+  const SliceView view{centre, 0.85 * std::min(panel_w, panel_h) / std::max(size.x, size.y), panel_w, panel_h};
+  PipelineSettings look = s;
+  look.camera_elevation_deg = 18.0;
+  const Camera camera = camera_looking_at(Vec3{centre.x, centre.y, 0.0}, view_direction(look), 2.3 * extent, s.fov_y_deg);
+  RenderStyle style = s.style;
+  style.umbrella[3] = std::max(style.umbrella[3], 0.55);  // more opaque so the noise reads
+  OffscreenRenderer renderer(panel_w, panel_h);
+
+  for (int c = 0; c < 2; ++c) {
+    const jellyfish::SliceFrame& f = *slices[c];
+    const int x = label_w + c * (panel_w + gap);
+    paste(picture, physics_panel(f, view), x, header_h);
+    paste(picture, rendering_model_panel(f, s, view), x, header_h + (panel_h + gap));
+    for (int r = 2; r < rows; ++r) {
+      const geometry::FrameGeometry g = geometry::GeometryBuilder(stage_geometry(s, r), length).build(f);
+      paste(picture, renderer.render(g.mesh, camera, style), x, header_h + r * (panel_h + gap));
+    }
+  }
+  return picture;
+}
+
+}  // namespace jellysim::render

@@ -1,0 +1,106 @@
+// End-to-end checks of the jellyfish commands: simulate, run (the main job), sweep, experiments.
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include "../cli_runner.hpp"
+
+namespace cli = jellysim::testing;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Result = cli::CliResult;
+
+Result run_cli(const std::string& args) { return cli::run_jellysim(args); }
+std::string slurp(const fs::path& p) { return cli::read_text_file(p); }
+fs::path fresh(const std::string& name) { return cli::fresh_scratch_dir("jelly_" + name); }
+
+}  // namespace
+
+TEST(JellyfishCli, SimulateWritesMetricsPicturesFieldsAndSummary) {
+  const fs::path dir = fresh("simulate");
+  const Result r = run_cli("simulate --quiet --duration 0.2 --set tank.tracers_per_side=10 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string metrics = slurp(dir / "metrics.csv");
+  EXPECT_EQ(metrics.substr(0, metrics.find('\n')),
+            "t,position,velocity,acceleration,volume,aperture_area,volume_ratio,aperture_ratio,thrust,lateral,"
+            "daniel_velocity,daniel_position");
+  for (const char* f : {"slices.csv", "position.png", "velocity.png", "acceleration.png", "morphology.png",
+                        "jellyfish.pvd", "frames/slice_000000.png", "frames/field_000006.vti",
+                        "frames/body_000006.vtp", "frames/tracers_000006.vtp"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "ok");
+  for (const char* key : {"units", "bell_height", "cycles", "distance_travelled", "simulated_seconds", "wall_seconds"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_DOUBLE_EQ(s["bell_height"].get<double>(), 0.028);
+  EXPECT_NEAR(s["cycles"].get<double>(), 0.14, 1e-9);
+  fs::remove_all(dir);
+}
+
+TEST(JellyfishCli, BadJellyfishInputNamesTheFieldAndWritesNothing) {
+  const fs::path dir = fresh("bad");
+  Result r = run_cli("simulate --quiet --out " + dir.string() + " --set jellyfish.gamma=1.5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("jellyfish.gamma"), std::string::npos) << r.output;
+  r = run_cli("simulate --quiet --out " + dir.string() + " --set jellyfish.position=[2.0,0.3]");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("jellyfish.position"), std::string::npos) << r.output;
+  r = run_cli("simulate --quiet --out " + dir.string() + " --set coupling.scheme=implicit");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("semi-implicit"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(JellyfishCli, InstabilityStopsTheRunSayingWhichWhenAndWhere) {
+  // A bell far too soft for the fluid: the structural checks stop the run and keep the frames.
+  const fs::path dir = fresh("unstable");
+  const Result r = run_cli("simulate --quiet --duration 3 --set jellyfish.bell_modulus=100 --set output.pictures=false "
+                           "--set output.vtk=false --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("structural instability"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at t ="), std::string::npos) << r.output;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_TRUE(fs::exists(dir / "metrics.csv"));
+  fs::remove_all(dir);
+}
+
+TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
+  const fs::path dir = fresh("run");
+  const Result r = run_cli("run --quiet --duration 0.2 --set render.width=160 --set render.height=120 --out " +
+                           dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"jellyfish.mp4", "jellyfish.glb", "viewer.html", "metrics.csv", "summary.json",
+                        "frames/frame_0000.png", "meshes/frame_0000.obj", "meshes/frame_0000.ply"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(s["command"], "run");
+  EXPECT_EQ(s["animation"]["frames"].get<int>(), 7);
+  fs::remove_all(dir);
+}
+
+TEST(JellyfishCli, OvalMembraneLosesLessAreaThanTheThesis) {
+  const fs::path dir = fresh("oval");
+  const Result r = run_cli("experiment oval-membrane --quiet --set refinement.cells=[30,60] --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string area = slurp(dir / "area.csv");
+  EXPECT_EQ(area.substr(0, area.find('\n')), "t,area,area_ratio,aspect_ratio");
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_LT(s["area_lost_percent"].get<double>(), s["thesis_area_lost_percent"].get<double>());
+  // Refinement shrinks the loss.
+  EXPECT_LT(s["refinement"][1]["area_lost_percent"].get<double>(), s["refinement"][0]["area_lost_percent"].get<double>());
+  fs::remove_all(dir);
+}
+
+TEST(JellyfishCli, SweepRunsEveryFrequency) {
+  const fs::path dir = fresh("sweep");
+  const Result r = run_cli("sweep --quiet --frequencies 0.5,0.9 --duration 0.5 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string csv = slurp(dir / "sweep.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+  EXPECT_TRUE(fs::exists(dir / "sweep.png"));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,46 @@
+#pragma once
+// Shared by the end-to-end tests of the command line: run `jellysim ARGS`, read files back, and
+// make a fresh scratch directory. JELLYSIM_CLI_PATH is defined by tests/CMakeLists.txt.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace jellysim::testing {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs the jellysim program with the given arguments (a shell command line).
+inline CliResult run_jellysim(const std::string& args) {
+  const std::string cmd = std::string(JELLYSIM_CLI_PATH) + " " + args + " 2>&1";
+  CliResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe) != nullptr) r.output += buf.data();
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string read_text_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A directory under the system temporary directory, removed first if it exists.
+inline std::filesystem::path fresh_scratch_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("jellysim_test_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+}  // namespace jellysim::testing

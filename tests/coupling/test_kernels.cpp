@@ -1,0 +1,130 @@
+// Spreading and interpolation (thesis §4.3.2): conservation, exactness and adjointness.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "coupling/kernels.hpp"
+
+namespace jellysim::coupling {
+namespace {
+
+const fluid::MacGrid kGrid(24, 20, 1.2, 1.0, Vec2{-0.1, 0.2});
+
+std::vector<Vec2> random_points(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  // Keep away from the sides so the 4-point stencil stays on stored samples.
+  std::uniform_real_distribution<double> ux(0.1, 0.9), uy(0.45, 1.0);
+  std::vector<Vec2> p;
+  for (int k = 0; k < n; ++k) p.push_back({ux(rng), uy(rng)});
+  return p;
+}
+
+class KernelTest : public ::testing::TestWithParam<Kernel> {};
+
+TEST_P(KernelTest, WeightsSumToOneAndHaveZeroFirstMoment) {
+  for (double r : {0.0, 0.13, 0.5, 0.77, 0.999}) {
+    double sum = 0.0, moment = 0.0;
+    for (int i = -3; i <= 3; ++i) {
+      sum += kernel_weight(GetParam(), r - i);
+      moment += (r - i) * kernel_weight(GetParam(), r - i);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14) << r;
+    EXPECT_NEAR(moment, 0.0, 1e-14) << r;
+  }
+}
+
+TEST_P(KernelTest, SpreadingConservesTotalForceAndTorque) {
+  const auto points = random_points(17, 1);
+  std::vector<Vec2> forces;
+  std::mt19937 rng(2);
+  std::normal_distribution<double> n01;
+  for (std::size_t k = 0; k < points.size(); ++k) forces.push_back({n01(rng), n01(rng)});
+  const double rho = 1000.0;
+  fluid::FaceAccelerations acc(kGrid);
+  spread_forces(points, forces, GetParam(), rho, acc);
+  Vec2 f_lagrangian{};
+  double torque_lagrangian = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    f_lagrangian += forces[k];
+    torque_lagrangian += cross(points[k], forces[k]);
+  }
+  const double cell_mass = rho * kGrid.dx() * kGrid.dy();
+  Vec2 f_grid{};
+  double torque_grid = 0.0;
+  for (int j = -1; j <= acc.u.count_y(); ++j)
+    for (int i = -1; i <= acc.u.count_x(); ++i) {
+      f_grid.x += cell_mass * acc.u(i, j);
+      torque_grid -= acc.u.position(i, j).y * cell_mass * acc.u(i, j);
+    }
+  for (int j = -1; j <= acc.v.count_y(); ++j)
+    for (int i = -1; i <= acc.v.count_x(); ++i) {
+      f_grid.y += cell_mass * acc.v(i, j);
+      torque_grid += acc.v.position(i, j).x * cell_mass * acc.v(i, j);
+    }
+  EXPECT_NEAR(f_grid.x, f_lagrangian.x, 1e-12);
+  EXPECT_NEAR(f_grid.y, f_lagrangian.y, 1e-12);
+  EXPECT_NEAR(torque_grid, torque_lagrangian, 1e-12);
+}
+
+TEST_P(KernelTest, InterpolationReproducesLinearFieldsExactly) {
+  fluid::Velocity vel(kGrid);
+  auto u_exact = [](Vec2 p) { return 0.3 + 1.7 * p.x - 0.4 * p.y; };
+  auto v_exact = [](Vec2 p) { return -1.1 + 0.25 * p.x + 2.5 * p.y; };
+  for (int j = -1; j <= vel.u.count_y(); ++j)
+    for (int i = -1; i <= vel.u.count_x(); ++i) vel.u(i, j) = u_exact(vel.u.position(i, j));
+  for (int j = -1; j <= vel.v.count_y(); ++j)
+    for (int i = -1; i <= vel.v.count_x(); ++i) vel.v(i, j) = v_exact(vel.v.position(i, j));
+  const auto points = random_points(40, 3);
+  std::vector<Vec2> out(points.size());
+  interpolate_velocities(vel, points, GetParam(), out);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    EXPECT_NEAR(out[k].x, u_exact(points[k]), 1e-13);
+    EXPECT_NEAR(out[k].y, v_exact(points[k]), 1e-13);
+  }
+}
+
+TEST_P(KernelTest, SpreadAndInterpolateAreAdjoint) {
+  // Σ_k F_k · (J u)_k = Σ_faces (S F)(face) u(face) ρΔxΔy for any u and F.
+  const auto points = random_points(11, 4);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01;
+  std::vector<Vec2> forces;
+  for (std::size_t k = 0; k < points.size(); ++k) forces.push_back({n01(rng), n01(rng)});
+  fluid::Velocity vel(kGrid);
+  for (double& x : vel.u.raw()) x = n01(rng);
+  for (double& x : vel.v.raw()) x = n01(rng);
+  std::vector<Vec2> at_points(points.size());
+  interpolate_velocities(vel, points, GetParam(), at_points);
+  double lagrangian = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) lagrangian += dot(forces[k], at_points[k]);
+  const double rho = 2.0;
+  fluid::FaceAccelerations acc(kGrid);
+  spread_forces(points, forces, GetParam(), rho, acc);
+  double eulerian = 0.0;
+  for (std::size_t k = 0; k < acc.u.raw().size(); ++k) eulerian += acc.u.raw()[k] * vel.u.raw()[k];
+  for (std::size_t k = 0; k < acc.v.raw().size(); ++k) eulerian += acc.v.raw()[k] * vel.v.raw()[k];
+  eulerian *= rho * kGrid.dx() * kGrid.dy();
+  EXPECT_NEAR(eulerian, lagrangian, 1e-12 * std::max(1.0, std::abs(lagrangian)));
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, KernelTest, ::testing::Values(Kernel::bilinear, Kernel::peskin4),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
+
+TEST(Kernel, PeskinFourPointHasItsDefiningSumOfSquares) {
+  // Σ_i φ(r − i)² = 3/8 for every r (Peskin 2002, eq. 6.24).
+  for (double r : {0.0, 0.2, 0.5, 0.9}) {
+    double s = 0.0;
+    for (int i = -3; i <= 3; ++i) s += std::pow(kernel_weight(Kernel::peskin4, r - i), 2);
+    EXPECT_NEAR(s, 3.0 / 8.0, 1e-14);
+  }
+}
+
+TEST(Kernel, NamesRoundTrip) {
+  EXPECT_EQ(kernel_from_string("peskin4"), Kernel::peskin4);
+  EXPECT_EQ(kernel_from_string("bilinear"), Kernel::bilinear);
+  EXPECT_FALSE(kernel_from_string("gauss").has_value());
+}
+
+}  // namespace
+}  // namespace jellysim::coupling

@@ -1,0 +1,184 @@
+// The jellyfish slice model (thesis §7.1): contraction functions, geometry, metrics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "elastic/forces.hpp"
+#include "jellyfish/contraction.hpp"
+#include "jellyfish/jellyfish.hpp"
+#include "jellyfish/metrics.hpp"
+
+namespace jellysim::jellyfish {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(Hermite, InterpolatesEndPointsAndDerivatives) {
+  // Eq. 7.3: Q(0) = x_b, Q(1) = x_e, Q'(0) = v_b, Q'(1) = v_e.
+  const double xb = 0.3, xe = -1.2, vb = 2.0, ve = 0.7, h = 1e-6;
+  EXPECT_DOUBLE_EQ(hermite(0.0, xb, xe, vb, ve), xb);
+  EXPECT_DOUBLE_EQ(hermite(1.0, xb, xe, vb, ve), xe);
+  EXPECT_NEAR((hermite(h, xb, xe, vb, ve) - hermite(0.0, xb, xe, vb, ve)) / h, vb, 1e-5);
+  EXPECT_NEAR((hermite(1.0, xb, xe, vb, ve) - hermite(1.0 - h, xb, xe, vb, ve)) / h, ve, 1e-5);
+}
+
+class ContractionShapes : public ::testing::TestWithParam<ContractionShape> {};
+
+TEST_P(ContractionShapes, AreNormalisedPeriodicAndRelaxedAtPhaseZero) {
+  ContractionProfile p;
+  p.shape = GetParam();
+  double lo = 1e9, hi = -1e9;
+  for (int k = 0; k <= 2000; ++k) {
+    const double s = k / 2000.0;
+    const double q = contraction_value(p, s);
+    lo = std::min(lo, q);
+    hi = std::max(hi, q);
+    EXPECT_NEAR(contraction_value(p, s + 3.0), q, 1e-12);
+  }
+  EXPECT_NEAR(contraction_value(p, 0.0), 1.0, 1e-9);
+  EXPECT_NEAR(hi, 1.0, 1e-6);
+  EXPECT_NEAR(lo, 0.0, 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, ContractionShapes,
+                         ::testing::Values(ContractionShape::hermite, ContractionShape::sine, ContractionShape::triangle,
+                                           ContractionShape::fourier, ContractionShape::trochoid),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
+
+TEST(Contraction, HermiteContractsFastAndApertureSpringsReexpandSlower) {
+  ContractionProfile apex, aperture;
+  apex.contract_fraction = aperture.contract_fraction = 0.3;
+  aperture.expansion_exponent = 2.0;
+  EXPECT_NEAR(contraction_value(apex, 0.3), 0.0, 1e-12);  // fully contracted after 30 % of the cycle
+  for (double s = 0.35; s < 1.0; s += 0.05) {
+    EXPECT_LT(contraction_value(aperture, s), contraction_value(apex, s)) << s;
+  }
+  EXPECT_NEAR(contracted_rest_length(2.0, 0.56, 0.0), 1.12, 1e-12);  // eq. 7.5
+  EXPECT_NEAR(contracted_rest_length(2.0, 0.56, 1.0), 2.0, 1e-12);
+}
+
+JellyfishSpec small_spec() {
+  JellyfishSpec s;
+  s.aperture_centre_m = {0.4, 0.3};
+  s.max_spacing_m = 0.004;
+  return s;
+}
+
+TEST(Jellyfish, GeometryFollowsTheBellShapeAndPeskinsSpacing) {
+  const Jellyfish j(small_spec());
+  const auto u = j.umbrella_points();
+  ASSERT_EQ(u.size() % 2, 1u);
+  const std::size_t n = u.size();
+  EXPECT_NEAR(u[n / 2].y - 0.3, 0.028, 1e-12);                 // apex at the bell height
+  EXPECT_NEAR(norm(u.back() - u.front()), 0.04, 1e-12);        // aperture = diameter
+  for (std::size_t k = 0; k + 1 < n; ++k) EXPECT_LE(norm(u[k + 1] - u[k]), 0.004 + 1e-12);
+  for (std::size_t k = 0; k < n; ++k) {                         // mirror symmetric about the axis
+    EXPECT_NEAR(u[k].x - 0.4, -(u[n - 1 - k].x - 0.4), 1e-12);
+    EXPECT_NEAR(u[k].y, u[n - 1 - k].y, 1e-12);
+  }
+  EXPECT_EQ(j.layout().tentacles.size(), 2u);
+  EXPECT_FALSE(polyline_self_intersects(u));
+}
+
+TEST(Jellyfish, SpringConstantsComeFromEquationSevenOne) {
+  const JellyfishSpec spec = small_spec();
+  const Jellyfish j(spec);
+  const auto& lin = j.body().linear;
+  // First umbrella spring: tangential, A = ϑ².
+  EXPECT_NEAR(lin.stiffness[0], spec.bell_modulus_pa * spec.thickness_m * spec.thickness_m / lin.rest_length[0], 1e-9);
+  // Muscles join opposing points and are the stiffest springs per unit length here.
+  const auto n = static_cast<int>(j.umbrella_points().size());
+  for (std::size_t k = 0; k < j.layout().muscle_springs.size(); ++k) {
+    const auto s = static_cast<std::size_t>(j.layout().muscle_springs[k]);
+    EXPECT_EQ(lin.i[s], static_cast<int>(k));
+    EXPECT_EQ(lin.j[s], n - 1 - static_cast<int>(k));
+  }
+}
+
+TEST(Jellyfish, MusclesShortenToGammaAtFullContraction) {
+  JellyfishSpec spec = small_spec();
+  spec.neural_delay_s = 0.0;
+  Jellyfish j(spec);
+  const double t_contracted = spec.profile.contract_fraction / spec.frequency_hz;
+  j.actuate(t_contracted);
+  for (std::size_t k = 0; k < j.layout().muscle_springs.size(); ++k) {
+    const auto s = static_cast<std::size_t>(j.layout().muscle_springs[k]);
+    EXPECT_NEAR(j.body().linear.rest_length[s], spec.gamma * j.layout().muscle_uncontracted_m[k], 1e-12);
+  }
+  j.actuate(1.0 / spec.frequency_hz);
+  for (std::size_t k = 0; k < j.layout().muscle_springs.size(); ++k) {
+    const auto s = static_cast<std::size_t>(j.layout().muscle_springs[k]);
+    EXPECT_NEAR(j.body().linear.rest_length[s], j.layout().muscle_uncontracted_m[k], 1e-12);
+  }
+}
+
+TEST(Jellyfish, BadSpecNamesTheField) {
+  JellyfishSpec spec = small_spec();
+  spec.gamma = 1.5;
+  try {
+    Jellyfish j(spec);
+    FAIL() << "accepted gamma = 1.5";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("jellyfish.gamma"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Metrics, ConeVolumeAndApertureAreExact) {
+  // Opposing points on a cone of radius r and height h: the frustum sum is exact.
+  const double r = 0.02, h = 0.03;
+  const int levels = 7;
+  std::vector<Vec2> left, right;
+  for (int k = 0; k < levels; ++k) {
+    const double f = static_cast<double>(k) / levels;
+    left.push_back({-r * (1 - f), h * f});
+    right.push_back({r * (1 - f), h * f});
+  }
+  std::vector<Vec2> umbrella = left;
+  umbrella.push_back({0.0, h});
+  for (int k = levels - 1; k >= 0; --k) umbrella.push_back(right[static_cast<std::size_t>(k)]);
+  const BellShape b = measure_bell(umbrella);
+  EXPECT_NEAR(b.volume_m3, kPi * r * r * h / 3.0, 1e-15);
+  EXPECT_NEAR(b.aperture_area_m2, kPi * r * r, 1e-15);
+  EXPECT_NEAR(b.cavity_area_m2, r * h, 1e-15);
+  EXPECT_NEAR(b.axis.y, 1.0, 1e-15);
+}
+
+TEST(Metrics, HemisphereVolumeConverges) {
+  const JellyfishSpec spec = [] {
+    JellyfishSpec s;
+    s.diameter_m = 0.04;
+    s.height_m = 0.02;  // hemisphere
+    return s;
+  }();
+  const auto u = bell_profile(spec.diameter_m, spec.height_m, 200);
+  const BellShape b = measure_bell(u);
+  EXPECT_NEAR(b.volume_m3 / (2.0 / 3.0 * kPi * 0.02 * 0.02 * 0.02), 1.0, 1e-3);
+}
+
+TEST(Metrics, DanielModelReachesTerminalVelocityWhereThrustBalancesDrag) {
+  const MetricsSettings s{1000.0, 1e-6};
+  const double volume = 1e-5, aperture = 1e-3, thrust = 1e-3;
+  std::vector<double> t, v, a, f;
+  for (int k = 0; k <= 4000; ++k) {
+    t.push_back(k * 0.01);
+    v.push_back(volume);
+    a.push_back(aperture);
+    f.push_back(thrust);
+  }
+  const auto u = daniel_velocity(t, v, a, f, s);
+  const double r = std::sqrt(aperture / kPi);
+  const double terminal = u.back();
+  const double cd = 24.0 * std::pow(2.0 * r * terminal / s.viscosity_m2_per_s, -0.7);
+  EXPECT_NEAR(0.5 * s.density_kg_per_m3 * cd * aperture * terminal * terminal, thrust, 1e-4 * thrust);
+  EXPECT_GT(terminal, 0.0);
+}
+
+TEST(Metrics, DominantFrequencyOfASampledSine) {
+  std::vector<double> y;
+  for (int k = 0; k < 300; ++k) y.push_back(std::sin(2 * kPi * 0.7 * k / 30.0) + 0.1);
+  EXPECT_NEAR(dominant_frequency(y, 1.0 / 30.0), 0.7, 0.1);
+}
+
+}  // namespace
+}  // namespace jellysim::jellyfish

@@ -1,0 +1,77 @@
+// The default jellyfish swims (thesis §8.2; Fig. 8.21's scene). Measured facts and the bounds
+// asserted here are in docs/jellyfish.md ("Symmetry and lateral drift").
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "experiments/experiment.hpp"
+#include "experiments/jellyfish_runs.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+jellyfish::SwimSettings default_scene() {
+  io::Config c = default_config(find_experiment("jellyfish"));
+  c.set("tank.tracers_per_side=0");
+  return read_swim_settings(c);
+}
+
+double mirror_mismatch(const std::vector<Vec2>& u, double axis_x) {
+  double mismatch = 0.0;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const Vec2 a = u[k], b = u[u.size() - 1 - k];
+    mismatch = std::max(mismatch, std::abs((a.x - axis_x) + (b.x - axis_x)) + std::abs(a.y - b.y));
+  }
+  return mismatch;
+}
+
+// Ten contraction cycles: the bell stays structurally sound, moves along its axis by more than one
+// bell height, further forward than sideways, and its volume oscillates at the contraction
+// frequency. (The target of < 5 % lateral drift is not met: the 2D wake is unstable and
+// the drift saturates at 5–100 % of the distance after 5–7 cycles; docs/jellyfish.md.)
+TEST(SlowSwim, DefaultJellyfishSwimsAlongItsAxis) {
+  const jellyfish::SwimSettings s = default_scene();
+  ASSERT_NEAR(s.duration_s * s.jellyfish.frequency_hz, 10.0, 1e-9);
+  const SwimRecording rec = run_swim(s, {}, nullptr, {});
+  ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
+  const auto& last = rec.metrics.back();
+  EXPECT_GT(last.position, s.jellyfish.height_m) << "distance " << last.position;
+  EXPECT_LT(std::abs(last.lateral), std::abs(last.position)) << "lateral " << last.lateral;
+  std::vector<double> volume;
+  for (const auto& r : rec.metrics) volume.push_back(r.volume);
+  const double resolution = 1.0 / s.duration_s;
+  EXPECT_NEAR(jellyfish::dominant_frequency(volume, s.frame_interval_s), s.jellyfish.frequency_hz, resolution);
+}
+
+// A symmetric bell in a symmetric tank stays mirror-symmetric while asymmetry is at solver-tolerance
+// level: the semi-implicit solve stops at a 1e-6 relative GMRES residual, and over two cycles the
+// measured point mismatch stays below 1.5e-7 m and the centroid's lateral offset below 2e-8 m. We
+// allow 1e-6 m (1/40,000 of the diameter) and 1e-7 m. Later the wake instability amplifies the
+// asymmetry (docs/jellyfish.md).
+TEST(Swim, SymmetricBellStaysSymmetricForTwoCycles) {
+  jellyfish::SwimSettings s = default_scene();
+  s.duration_s = 2.0 / s.jellyfish.frequency_hz;
+  s.jellyfish.aperture_centre_m.x = 0.5 * s.tank.width_m;
+  const SwimRecording rec = run_swim(s, {}, nullptr, {});
+  ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
+  const double axis_x = 0.5 * s.tank.width_m;
+  for (const auto& f : rec.frames) EXPECT_LT(mirror_mismatch(f.umbrella, axis_x), 1e-6) << f.time_s;
+  for (const auto& r : rec.metrics) EXPECT_LT(std::abs(r.lateral), 1e-7) << r.t;
+  // It contracts in each cycle and re-expands in between.
+  const double period = 1.0 / s.jellyfish.frequency_hz;
+  for (int cycle = 0; cycle < 2; ++cycle) {
+    double v_min = 1e9, v_max_after = 0.0, t_min = 0.0;
+    for (const auto& r : rec.metrics)
+      if (r.t >= cycle * period && r.t < (cycle + 1) * period && r.volume_ratio < v_min) {
+        v_min = r.volume_ratio;
+        t_min = r.t;
+      }
+    for (const auto& r : rec.metrics)
+      if (r.t > t_min && r.t <= (cycle + 1) * period) v_max_after = std::max(v_max_after, r.volume_ratio);
+    EXPECT_LT(v_min, 0.6) << "cycle " << cycle;
+    EXPECT_GT(v_max_after, v_min + 0.15) << "cycle " << cycle;
+  }
+}
+
+}  // namespace
+}  // namespace jellysim::experiments

@@ -1,0 +1,144 @@
+// Offscreen rendering (EGL surfaceless, Mesa llvmpipe), PNG round trip, the stored reference image,
+// and the whole animation-output pipeline. Skipped (with the reason) where no EGL device exists.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "experiments/experiment.hpp"
+#include "geometry/extrapolation.hpp"
+#include "geometry/synthetic_bell.hpp"
+#include "io/errors.hpp"
+#include "render/animation_outputs.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/video.hpp"
+
+namespace jellysim::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+#define REQUIRE_OFFSCREEN_GL()                                                               \
+  do {                                                                                       \
+    std::string why;                                                                         \
+    if (!offscreen_gl_available(&why)) GTEST_SKIP() << "no offscreen OpenGL device: " << why; \
+  } while (0)
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("jellysim_test_render_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// The known scene of the reference image: the expanded synthetic bell without noise.
+RgbImage render_known_mesh() {
+  geometry::GeometrySettings s;
+  s.noise.structural_weight = s.noise.compression_weight = s.noise.unstructured_weight = 0.0;
+  const auto slice = geometry::synthetic_bell(0.04, 0.028, 0.0, 21, 8);
+  const geometry::FrameGeometry g = geometry::GeometryBuilder(s, 0.028).build(slice);
+  const Camera camera = camera_looking_at({0.0, 0.008, 0.0}, {0.4, 0.25, 1.0}, 0.11, 40.0);
+  OffscreenRenderer renderer(160, 120);
+  return renderer.render(g.mesh, camera, RenderStyle{});
+}
+
+double brightness(Rgb c) { return (c[0] + c[1] + c[2]) / 3.0; }
+
+TEST(Renderer, JellyfishStandsOutFromTheWater) {
+  REQUIRE_OFFSCREEN_GL();
+  const RgbImage image = render_known_mesh();
+  ASSERT_EQ(image.width, 160);
+  // The bell (image centre) is brighter than the water beside it at the same height.
+  EXPECT_GT(brightness(image.at(80, 50)), brightness(image.at(5, 50)) + 40.0);
+  // Background: lighter near the surface than in the depth.
+  EXPECT_GT(brightness(image.at(5, 2)), brightness(image.at(5, 117)));
+}
+
+TEST(Renderer, MatchesTheStoredReferenceImage) {
+  REQUIRE_OFFSCREEN_GL();
+  const RgbImage image = render_known_mesh();
+  const fs::path reference = fs::path(JELLYSIM_SOURCE_DIR) / "tests/render/data/reference_bell.png";
+  if (std::getenv("JELLYSIM_UPDATE_REFERENCE")) write_png(image, reference);
+  const RgbImage expected = read_png(reference);
+  const ImageDifference d = compare_images(image, expected);
+  // Tolerance: mean |Δ| ≤ 1 level per channel (0–255), no pixel off by more than 48 levels —
+  // room for another Mesa/llvmpipe version's rounding and multisample patterns, none for a
+  // missing mesh, wrong camera or wrong lighting (each moves the mean by ≥ 5 levels).
+  EXPECT_LE(d.mean_abs, 1.0);
+  EXPECT_LE(d.max_abs, 48);
+}
+
+TEST(Renderer, PngRoundTripIsExact) {
+  RgbImage image(7, 5, {10, 20, 30});
+  image.set(3, 2, {255, 0, 128});
+  draw_text(image, 0, 0, "A", 1, {1, 2, 3});
+  const fs::path file = scratch("png") / "a.png";
+  write_png(image, file);
+  const RgbImage back = read_png(file);
+  EXPECT_EQ(back.pixels, image.pixels);
+  EXPECT_THROW(read_png(file.parent_path() / "missing.png"), InputError);
+  fs::remove_all(file.parent_path().parent_path());
+}
+
+TEST(Renderer, BadSizeIsAnInputError) {
+  EXPECT_THROW(OffscreenRenderer(4, 4), InputError);
+}
+
+io::Config stages_config() {
+  return io::Config::parse(experiments::embedded_text("experiments/stages.toml"), "stages.toml");
+}
+
+TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
+  const PipelineSettings s = pipeline_settings_from_config(stages_config());
+  EXPECT_EQ(s.width_px, 640);
+  EXPECT_EQ(s.geometry.latitude_samples, 65);
+  EXPECT_DOUBLE_EQ(s.geometry.noise.structural_weight, 0.01875);
+  for (const char* bad : {"render.width=3", "render.latitude_samples=64", "render.noise.max_contraction=1.5",
+                          "render.noise.unstructured_weight=-1", "render.interpolant=bezier"}) {
+    io::Config c = stages_config();
+    c.set(bad);
+    const std::string field = std::string(bad).substr(0, std::string(bad).find('='));
+    try {
+      pipeline_settings_from_config(c);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Pipeline, WritesEveryPromisedFile) {
+  REQUIRE_OFFSCREEN_GL();
+  PipelineSettings s = pipeline_settings_from_config(stages_config());
+  s.width_px = 96;
+  s.height_px = 72;
+  s.geometry.latitude_samples = 21;
+  s.geometry.disc_points = 24;
+  s.video = !find_ffmpeg().empty();
+  std::vector<jellyfish::SliceFrame> frames;
+  for (int k = 0; k < 4; ++k) {
+    geometry::SyntheticBell spec;
+    spec.contraction = 0.25 * k;
+    spec.time_s = k / 30.0;
+    frames.push_back(geometry::synthetic_bell(spec));
+  }
+  const fs::path dir = scratch("pipeline");
+  std::size_t calls = 0;
+  const AnimationOutputs out =
+      write_animation_outputs(frames, s, io::OutputDir(dir), [&](std::size_t, std::size_t) { ++calls; });
+  EXPECT_EQ(calls, 4u);
+  EXPECT_EQ(out.frames, 4u);
+  for (const char* f : {"frames/frame_0000.png", "frames/frame_0003.png", "meshes/frame_0000.obj",
+                        "meshes/frame_0003.ply", "jellyfish.glb", "viewer.html", "jellyfish.glb.js"})
+    EXPECT_TRUE(fs::is_regular_file(dir / f)) << f;
+  if (s.video) {
+    EXPECT_GT(fs::file_size(dir / "jellyfish.mp4"), 1000u);
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  EXPECT_EQ(out.figures()["frames"], 4);
+  fs::remove_all(dir.parent_path());
+}
+
+}  // namespace
+}  // namespace jellysim::render

@@ -1,0 +1,225 @@
+// SPH forces (eqs. 5.5-5.8), the neighbour grid, walls and initial conditions (§5.1.2-5.1.3).
+#include "sph/fluid.hpp"
+#include "sph/initial_conditions.hpp"
+#include "sph/neighbour_grid.hpp"
+#include "sph/scene.hpp"
+#include "sph_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace jellysim::sph {
+namespace {
+
+TEST(SphNeighbourGrid, FindsExactlyTheBruteForceNeighbours) {
+  test::Random rng(7);
+  std::vector<Vec2> x;
+  for (int i = 0; i < 1500; ++i) x.push_back(rng.point(1.0));
+  for (int i = 0; i < 300; ++i) x.push_back(Vec2{0.3, 0.3} + rng.point(0.02));  // a dense cluster
+  x.push_back({25.0, -40.0});                                                   // a far outlier
+  for (double radius : {0.05, 0.13}) {
+    NeighbourGrid grid;
+    grid.build(x, radius);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      std::vector<std::size_t> found;
+      grid.for_each_candidate(x[i], [&](std::size_t j) {
+        if (j != i && norm_squared(x[j] - x[i]) < radius * radius) found.push_back(j);
+      });
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, brute_force_neighbours(x, i, radius)) << "point " << i << ", radius " << radius;
+    }
+  }
+}
+
+TEST(SphNeighbourGrid, CellCountStaysLinearForASparseSet) {
+  NeighbourGrid grid;
+  grid.build({{0.0, 0.0}, {1e6, 1e6}}, 1e-3);
+  EXPECT_LE(static_cast<double>(grid.columns()) * grid.rows(), 4.0 * 2 + 16);
+}
+
+SphParameters parameters() { return {0.05, 2000.0, 40.0, 8.9e-3}; }
+
+TEST(SphFluid, IsolatedParticleHasItsOwnKernelDensity) {
+  SphFluid fluid(parameters(), {});
+  fluid.compute_density({{0.2, 0.3}}, {{0.0, 0.0}}, {2.5});
+  EXPECT_DOUBLE_EQ(fluid.density()[0], 2.5 * Kernels(0.05).poly6(0.0));
+}
+
+TEST(SphFluid, CompressedPairRepelsAndStretchedPairAttracts) {
+  SphParameters p = parameters();
+  SphFluid fluid(p, {});
+  std::vector<Vec2> a;
+  const std::vector<Vec2> v(2);
+  // Mass so large that each density exceeds ρ0: p > 0 pushes apart (the sign eq. 5.6 lacks).
+  fluid.compute_accelerations({{0.0, 0.0}, {0.02, 0.0}}, v, {10.0, 10.0}, a);
+  EXPECT_LT(a[0].x, 0.0);
+  EXPECT_GT(a[1].x, 0.0);
+  fluid.compute_accelerations({{0.0, 0.0}, {0.02, 0.0}}, v, {0.1, 0.1}, a);  // ρ < ρ0: attraction
+  EXPECT_GT(a[0].x, 0.0);
+}
+
+TEST(SphFluid, ViscosityDampsRelativeVelocityOnly) {
+  SphParameters p = parameters();
+  p.gas_constant = 0.0;
+  SphFluid fluid(p, {});
+  std::vector<Vec2> a;
+  const std::vector<Vec2> x{{0.0, 0.0}, {0.03, 0.0}};
+  fluid.compute_accelerations(x, {{0.0, 1.0}, {0.0, -1.0}}, {1.0, 1.0}, a);
+  EXPECT_LT(a[0].y, 0.0);
+  EXPECT_GT(a[1].y, 0.0);
+  fluid.compute_accelerations(x, {{0.7, 1.0}, {0.7, 1.0}}, {1.0, 1.0}, a);  // uniform motion: no force
+  EXPECT_EQ(a[0], (Vec2{0.0, 0.0}));
+}
+
+TEST(SphFluid, PairForcesConserveMomentum) {
+  test::Random rng(11);
+  std::vector<Vec2> x, v;
+  std::vector<double> m;
+  for (int i = 0; i < 400; ++i) {
+    x.push_back(rng.point(0.4));
+    v.push_back(rng.point(1.0));
+    m.push_back(rng.uniform(0.5, 3.0));
+  }
+  for (int threads : {1, 2}) {
+    SphFluid fluid(parameters(), {}, threads);
+    std::vector<Vec2> a;
+    fluid.compute_accelerations(x, v, m, a);
+    Vec2 total{};
+    double scale = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      total += a[i] * m[i];
+      scale += norm(a[i]) * m[i];
+    }
+    EXPECT_GT(scale, 0.0);
+    EXPECT_LT(norm(total), 1e-12 * scale) << threads << " threads";
+  }
+}
+
+TEST(SphFluid, ThreadsGiveBitIdenticalAccelerations) {
+  test::Random rng(3);
+  std::vector<Vec2> x, v;
+  for (int i = 0; i < 900; ++i) {
+    x.push_back(rng.point(0.5));
+    v.push_back(rng.point(0.1));
+  }
+  const std::vector<double> m(x.size(), 1.3);
+  const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
+  std::vector<Vec2> a1, a2;
+  SphFluid one(parameters(), walls, 1), two(parameters(), walls, 2);
+  one.compute_accelerations(x, v, m, a1);
+  two.compute_accelerations(x, v, m, a2);
+  EXPECT_EQ(a1, a2);
+}
+
+TEST(SphWalls, MirroredTwinsRepelParticlesFromAWall) {
+  SphFluid fluid(parameters(), {Wall{{0.0, 0.0}, {0.0, 1.0}, true}});
+  std::vector<Vec2> a;
+  fluid.compute_accelerations({{0.5, 0.01}}, {{0.0, -1.0}}, {10.0}, a);
+  EXPECT_EQ(fluid.mirrored_count(), 1u);
+  EXPECT_GT(a[0].y, 0.0);                    // pushed off the wall
+  EXPECT_NEAR(a[0].x, 0.0, 1e-12 * a[0].y);  // straight away from it
+  fluid.compute_accelerations({{0.5, 0.06}}, {{0.0, 0.0}}, {10.0}, a);
+  EXPECT_EQ(fluid.mirrored_count(), 0u);  // farther than h: no twin
+}
+
+TEST(SphInitialConditions, TriangularLatticeHasSixEquidistantNeighbours) {
+  const double a = 0.04;
+  const std::vector<Vec2> x = triangular_lattice({0.0, 0.0}, {1.0, 1.0}, a);
+  int interior = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i].x < 0.2 || x[i].x > 0.8 || x[i].y < 0.2 || x[i].y > 0.8) continue;
+    ++interior;
+    const auto near = brute_force_neighbours(x, i, 1.01 * a);
+    ASSERT_EQ(near.size(), 6u);
+    for (std::size_t j : near) EXPECT_NEAR(norm(x[j] - x[i]), a, 1e-12);
+  }
+  EXPECT_GT(interior, 100);
+  for (Vec2 p : x) {
+    EXPECT_GE(std::min({p.x, p.y, 1.0 - p.x, 1.0 - p.y}), 0.5 * a - 1e-12);
+  }
+}
+
+TEST(SphInitialConditions, LatticeWithCountHasExactlyThatManyPointsOutsideTheHole) {
+  const auto hole = [](Vec2 p) { return std::abs(p.x - 0.5) < 0.2 && std::abs(p.y - 0.5) < 0.025; };
+  const std::vector<Vec2> x = triangular_lattice_with_count({0.0, 0.0}, {1.0, 1.0}, 625, hole);
+  ASSERT_EQ(x.size(), 625u);
+  for (Vec2 p : x) EXPECT_FALSE(hole(p));
+}
+
+TEST(SphInitialConditions, MassBisectionReachesTheRestDensity) {
+  const std::vector<Vec2> x = triangular_lattice({0.0, 0.0}, {1.0, 1.0}, 0.043);
+  const SphParameters p = parameters();
+  const std::vector<Wall> walls = box_walls({0.0, 0.0}, {1.0, 1.0});
+  const MassSearch r = find_particle_mass(x, 1.0, p, walls, 1e-6);
+  EXPECT_NEAR(r.mean_density, p.rest_density, 1e-6 * p.rest_density);
+  EXPECT_GT(r.iterations, 0);
+  EXPECT_GT(std::abs(r.mass_kg - r.initial_guess_kg), 0.01 * r.initial_guess_kg);  // eq. 5.21 alone is off
+  SphFluid fluid(p, walls);
+  fluid.compute_density(x, std::vector<Vec2>(x.size()), std::vector<double>(x.size(), r.mass_kg));
+  double mean = 0.0;
+  for (double rho : fluid.density()) mean += rho / static_cast<double>(x.size());
+  EXPECT_NEAR(mean, p.rest_density, 1e-6 * p.rest_density);
+}
+
+TEST(SphInitialConditions, ThermalisedVelocitiesOpposeTheNoiseAndAreSeeded) {
+  std::vector<Vec2> x0 = triangular_lattice({0.0, 0.0}, {1.0, 1.0}, 0.05), x = x0, v, x2 = x0, v2;
+  thermalise(x, v, 0.004, 0.01, 42);
+  thermalise(x2, v2, 0.004, 0.01, 42);
+  EXPECT_EQ(x, x2);
+  EXPECT_EQ(v, v2);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Vec2 eps = x[i] - x0[i];
+    EXPECT_LE(norm(eps), 0.004 + 1e-15);
+    EXPECT_NEAR(v[i].x, -0.01 * eps.x, 1e-15);
+    EXPECT_NEAR(v[i].y, -0.01 * eps.y, 1e-15);
+  }
+}
+
+}  // namespace
+}  // namespace jellysim::sph
+
+namespace jellysim::sph {
+namespace {
+
+TEST(SphFluid, AccelerationsMatchADirectSumOverAllPairs) {
+  // Reference: eqs. 5.5, 5.6 (with its minus sign) and 5.8 (with v_j − v_i), written out with the
+  // Kernels functions over all pairs, no grid and no walls.
+  test::Random rng(17);
+  const SphParameters p = parameters();
+  const Kernels k(p.smoothing_radius_m);
+  std::vector<Vec2> x, v;
+  std::vector<double> m;
+  for (int i = 0; i < 300; ++i) {
+    x.push_back(rng.point(0.25));
+    v.push_back(rng.point(0.5));
+    m.push_back(rng.uniform(1.0, 4.0));
+  }
+  const std::size_t n = x.size();
+  std::vector<double> rho(n, 0.0), pressure(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) rho[i] += m[j] * k.poly6(norm(x[i] - x[j]));
+    pressure[i] = p.gas_constant * (rho[i] - p.rest_density);
+  }
+  SphFluid fluid(p, {});
+  std::vector<Vec2> a;
+  fluid.compute_accelerations(x, v, m, a);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 f_pressure{}, f_viscous{};
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const Vec2 d = x[i] - x[j];
+      const double r = norm(d);
+      f_pressure -= k.spiky_gradient(d, r) * (m[j] / rho[j] * 0.5 * (pressure[i] + pressure[j]));
+      f_viscous += (v[j] - v[i]) * (m[j] / rho[j] * k.viscosity_laplacian(r));
+    }
+    const Vec2 expected = f_pressure / rho[i] + f_viscous * (p.viscosity * p.rest_density / rho[i]);
+    ASSERT_NEAR(fluid.density()[i], rho[i], 1e-12 * rho[i]);
+    ASSERT_NEAR(a[i].x, expected.x, 1e-9 * (norm(expected) + 1.0)) << i;
+    ASSERT_NEAR(a[i].y, expected.y, 1e-9 * (norm(expected) + 1.0)) << i;
+  }
+}
+
+}  // namespace
+}  // namespace jellysim::sph
