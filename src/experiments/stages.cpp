@@ -1,9 +1,11 @@
 // Thesis Figure 8.19: the stages from the 2D slice to the noisy 3D jellyfish, expanded and
-// contracted, as one picture. Uses synthetic slices until simulated frames are fed in;
-// render::render_stages_picture takes any two SliceFrames.
+// contracted, as one picture. By default the two slices come from one simulated contraction
+// cycle of the built-in jellyfish (the rest state and the frame of smallest bell volume);
+// `bell.source = "synthetic"` uses an analytic contracting bell instead.
 #include <chrono>
 
 #include "experiments/experiment.hpp"
+#include "experiments/jellyfish_runs.hpp"
 #include "geometry/synthetic_bell.hpp"
 #include "io/errors.hpp"
 #include "render/animation_outputs.hpp"
@@ -14,6 +16,7 @@ namespace {
 struct StagesSetup {
   geometry::SyntheticBell bell;
   double contracted = 0.9;
+  bool simulated = true;
   int panel_width = 360, panel_height = 300;
   render::PipelineSettings pipeline;
 };
@@ -24,6 +27,7 @@ StagesSetup read_setup(const io::Config& c) {
   s.bell.height_m = c.number("bell.height", io::Range::positive());
   s.bell.thickness_m = c.number("bell.thickness", io::Range::positive());
   s.contracted = c.number("bell.contracted", io::Range::closed(0.0, 1.0));
+  s.simulated = c.choice("bell.source", {"simulation", "synthetic"}) == "simulation";
   s.bell.umbrella_points = static_cast<int>(c.integer("bell.umbrella_points", 5, 10001));
   if (s.bell.umbrella_points % 2 == 0)
     throw InputError("field 'bell.umbrella_points' = " + std::to_string(s.bell.umbrella_points) + " must be odd");
@@ -38,10 +42,26 @@ StagesSetup read_setup(const io::Config& c) {
 
 Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::OutputDir& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  geometry::SyntheticBell expanded = s.bell, contracted = s.bell;
-  expanded.contraction = 0.0;
-  contracted.contraction = s.contracted;
-  const jellyfish::SliceFrame a = geometry::synthetic_bell(expanded), b = geometry::synthetic_bell(contracted);
+  jellyfish::SliceFrame a, b;
+  if (s.simulated) {
+    // One contraction cycle of the built-in scene: expanded = the rest state, contracted = the
+    // frame with the smallest sub-umbrellar volume.
+    io::Config scene = default_config(find_experiment("jellyfish"));
+    scene.set("tank.tracers_per_side=0");
+    scene.set("duration=" + io::format_double(1.0 / scene.number("jellyfish.frequency")));
+    const SwimRecording rec = run_swim(read_swim_settings(scene), {}, nullptr, {});
+    std::size_t smallest = 0;
+    for (std::size_t k = 0; k < rec.metrics.size(); ++k)
+      if (rec.metrics[k].volume < rec.metrics[smallest].volume) smallest = k;
+    a = rec.frames.front();
+    b = rec.frames[smallest];
+  } else {
+    geometry::SyntheticBell expanded = s.bell, contracted = s.bell;
+    expanded.contraction = 0.0;
+    contracted.contraction = s.contracted;
+    a = geometry::synthetic_bell(expanded);
+    b = geometry::synthetic_bell(contracted);
+  }
   const render::RgbImage picture = render::render_stages_picture(a, b, s.pipeline, s.panel_width, s.panel_height);
   const auto tmp = out.temporary_for("stages.png");
   render::write_png(picture, tmp);
@@ -51,6 +71,8 @@ Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::Out
   nlohmann::ordered_json figures;
   figures["stages"] = render::stage_names();
   figures["columns"] = {"expanded", "contracted"};
+  figures["source"] = s.simulated ? "simulation" : "synthetic";
+  figures["contracted_time_s"] = b.time_s;
   figures["picture"] = "stages.png";
   figures["picture_size_px"] = {picture.width, picture.height};
   figures["noise_length_scale_m"] = builder.length_scale_m();

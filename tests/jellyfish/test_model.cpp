@@ -113,6 +113,43 @@ TEST(Jellyfish, MusclesShortenToGammaAtFullContraction) {
   }
 }
 
+TEST(Jellyfish, DenseMeshModelHasTwoRowsWithCrossingDiagonals) {
+  JellyfishSpec spec = small_spec();
+  spec.model = UmbrellaModel::mesh;
+  spec.tentacle_length_m = 0.0;
+  const Jellyfish j(spec);
+  const std::size_t n = j.layout().umbrella.size();
+  ASSERT_EQ(j.layout().exumbrella.size(), n);
+  EXPECT_EQ(j.body().angular.size(), 0u);  // Fig. 7.2 left: linear springs only
+  // Per quad: outer edge, inner edge, two diagonals; plus one rung per point; plus the muscles.
+  EXPECT_EQ(j.body().linear.size(), 4 * (n - 1) + n + j.layout().muscle_springs.size());
+  // The outer row lies outside the cavity: farther from the aperture centre than the inner row.
+  const Vec2 c = spec.aperture_centre_m;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 in = j.body().points.position[static_cast<std::size_t>(j.layout().umbrella[k])];
+    const Vec2 out = j.body().points.position[static_cast<std::size_t>(j.layout().exumbrella[k])];
+    EXPECT_GT(norm(out - c), norm(in - c)) << k;
+  }
+}
+
+TEST(Contraction, ClosedLoopControllerShortensASpringThatLagsBehind) {
+  // Eq. 7.2: during the contraction phase a spring still at full length must shorten its rest length.
+  RestLengthController c;
+  const double l_ru = 0.03, f = 0.7, gamma = 0.56;
+  double rest = l_ru;
+  rest = c.update(0.0, l_ru, l_ru, rest, gamma, f, 0.3);
+  for (int k = 1; k <= 10; ++k) rest = c.update(0.01 * k, l_ru, l_ru, rest, gamma, f, 0.3);
+  EXPECT_LT(rest, l_ru);
+  EXPECT_GE(rest, 0.2 * l_ru);
+  // In the relaxation phase, a spring stuck at the contracted length lengthens its rest length.
+  RestLengthController r;
+  double rest2 = gamma * l_ru;
+  const double t0 = 0.8 / f;
+  rest2 = r.update(t0, gamma * l_ru, l_ru, rest2, gamma, f, 0.3);
+  for (int k = 1; k <= 10; ++k) rest2 = r.update(t0 + 0.01 * k, gamma * l_ru, l_ru, rest2, gamma, f, 0.3);
+  EXPECT_GT(rest2, gamma * l_ru);
+}
+
 TEST(Jellyfish, BadSpecNamesTheField) {
   JellyfishSpec spec = small_spec();
   spec.gamma = 1.5;
