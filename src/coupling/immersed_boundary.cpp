@@ -269,7 +269,6 @@ std::string check_stability(const fluid::FlowState& flow, const elastic::Body& b
       return "numerical instability: marker " + std::to_string(p) + " at " + format_vec(x[p]) + " moves at " +
              format_number(norm(v[p])) + " m/s > max_speed = " + format_number(limits.max_speed_m_per_s) + " m/s";
   }
-  const fluid::MacGrid& g = flow.grid;
   auto check_field = [&](const fluid::Field& f, const char* name) -> std::string {
     for (int j = 0; j < f.count_y(); ++j)
       for (int i = 0; i < f.count_x(); ++i) {
@@ -282,7 +281,6 @@ std::string check_stability(const fluid::FlowState& flow, const elastic::Body& b
       }
     return {};
   };
-  (void)g;
   if (std::string p = check_field(flow.velocity.u, "u"); !p.empty()) return p;
   if (std::string p = check_field(flow.velocity.v, "v"); !p.empty()) return p;
   const auto& lin = body.linear;

@@ -7,7 +7,8 @@
 //    end of the step, linearised, F(X + ΔX) ≈ F + KΔX, with ΔX = Δt·u^{n+1}(X) found by GMRES
 //    where every operator application spreads, projects and interpolates (the fluid's true
 //    response to a point force, pressure included). This is backward Euler for the stiff
-//    elastic–fluid exchange and stays stable at steps limited only by the fluid's CFL condition.
+//    elastic–fluid exchange; on the default jellyfish it stays stable at 8 times the explicit
+//    scheme's largest step (docs/jellyfish.md).
 #include <functional>
 #include <string>
 #include <vector>
