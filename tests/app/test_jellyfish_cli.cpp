@@ -70,8 +70,8 @@ TEST(JellyfishCli, InstabilityStopsTheRunSayingWhichWhenAndWhere) {
 
 TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
   const fs::path dir = fresh("run");
-  const Result r = run_cli("run --quiet --duration 0.2 --set render.width=160 --set render.height=120 --out " +
-                           dir.string());
+  const Result r = run_cli("run --quiet --duration 0.2 --set render.width=160 --set render.height=120 "
+                           "--set render.obj=true --set render.ply=true --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"jellyfish.mp4", "jellyfish.glb", "viewer.html", "metrics.csv", "summary.json",
                         "frames/frame_0000.png", "meshes/frame_0000.obj", "meshes/frame_0000.ply"})
