@@ -126,12 +126,6 @@ void ImmersedBoundary::compute_forces(std::vector<Vec2>& force) const {
   }
 }
 
-std::vector<Vec2> ImmersedBoundary::current_forces() const {
-  std::vector<Vec2> f;
-  compute_forces(f);
-  return f;
-}
-
 void ImmersedBoundary::assemble_stiffness(Eigen::SparseMatrix<double>& k) const {
   const auto& x = body_.points.position;
   std::vector<Triplet> t;
@@ -248,14 +242,6 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
   move_markers_with_fluid(dt_s);
   return report;
-}
-
-Vec2 total_force(const fluid::FaceAccelerations& acc, double density_kg_per_m3) {
-  const fluid::MacGrid& g = acc.u.grid();
-  Vec2 sum{};
-  for (double a : acc.u.raw()) sum.x += a;
-  for (double a : acc.v.raw()) sum.y += a;
-  return density_kg_per_m3 * g.dx() * g.dy() * sum;
 }
 
 std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,

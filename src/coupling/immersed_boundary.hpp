@@ -72,8 +72,6 @@ class ImmersedBoundary {
   /// Advances fluid and markers by dt_s; the markers' velocities are stored in body().points.velocity.
   CoupledStepReport step(double dt_s);
 
-  /// Elastic forces (N per metre of depth) on the markers at the current positions and time.
-  std::vector<Vec2> current_forces() const;
 
  private:
   CoupledStepReport step_explicit(double dt_s);
@@ -107,8 +105,5 @@ class ImmersedBoundary {
 /// else against the spring's current rest length.
 std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,
                             const std::vector<double>* strain_reference = nullptr);
-
-/// Σ_faces a·ρΔxΔy: the total force (N per metre of depth) a face-acceleration field exerts.
-Vec2 total_force(const fluid::FaceAccelerations& acc, double density_kg_per_m3);
 
 }  // namespace jellysim::coupling

@@ -66,15 +66,6 @@ void spread(fluid::Field& field, const Stencil& s, double value) {
   }
 }
 
-double stencil_self_weight(const Stencil& s) {
-  double sx = 0.0, sy = 0.0;
-  for (int a = 0; a < s.width; ++a) {
-    sx += s.wx[a] * s.wx[a];
-    sy += s.wy[a] * s.wy[a];
-  }
-  return sx * sy;
-}
-
 void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out) {
   for (std::size_t p = 0; p < points.size(); ++p) {
     out[p] = {interpolate(vel.u, make_stencil(vel.u, points[p], k)),

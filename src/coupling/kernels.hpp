@@ -48,8 +48,4 @@ void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> po
 void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
                    fluid::FaceAccelerations& acc);
 
-/// Σ_faces w_k(face)² for one point and one component: the self-mobility weight used by the
-/// semi-implicit coupling.
-double stencil_self_weight(const Stencil& s);
-
 }  // namespace jellysim::coupling

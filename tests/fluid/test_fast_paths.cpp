@@ -14,36 +14,14 @@
 #include "fluid/projection.hpp"
 #include "fluid/reference_data.hpp"
 #include "fluid/semi_lagrangian.hpp"
+#include "fluid_test_util.hpp"
 
 namespace jellysim::fluid {
 namespace {
 
-struct Mix {
-  std::string name;
-  Boundaries b;
-};
-
-std::vector<Mix> mixes() {
-  using T = BoundaryType;
-  auto bc = [](T t, Vec2 v = {}) { return BoundaryCondition{t, v}; };
-  return {
-      {"all-no-slip", Boundaries::all(T::no_slip)},
-      {"all-free-slip", Boundaries::all(T::free_slip)},
-      {"lid-driven-cavity", Boundaries::lid_driven_cavity(1.0)},
-      {"periodic-x-walls-y", {bc(T::periodic), bc(T::periodic), bc(T::no_slip), bc(T::free_slip)}},
-      {"periodic-both", Boundaries::all(T::periodic)},
-      {"inflow-outflow-channel", {bc(T::inflow, {1.0, 0.0}), bc(T::outflow), bc(T::no_slip), bc(T::no_slip)}},
-      {"all-outflow", Boundaries::all(T::outflow)},
-      {"periodic-y-inflow-outflow", {bc(T::inflow, {1.0, 0.0}), bc(T::outflow), bc(T::periodic), bc(T::periodic)}},
-  };
-}
-
-void randomise(Velocity& vel, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  for (double& x : vel.u.raw()) x = d(rng);
-  for (double& x : vel.v.raw()) x = d(rng);
-}
+using testing::Mix;
+using testing::randomise;
+std::vector<Mix> mixes() { return testing::boundary_mixes(); }
 
 double max_difference(const Field& a, const Field& b) {
   double m = 0.0;
