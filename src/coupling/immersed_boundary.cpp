@@ -82,6 +82,27 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
   if (!(settings_.safety_factor > 0.0)) throw std::invalid_argument("coupling safety factor must be > 0");
   if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
+  refresh_markers();
+}
+
+void ImmersedBoundary::refresh_markers() {
+  const auto& kind = body_.points.kind;
+  is_target_.assign(body_.points.size(), 0);
+  has_targets_ = false;
+  for (std::size_t p = 0; p < kind.size(); ++p)
+    if (kind[p] != elastic::PointKind::Free) is_target_[p] = 1, has_targets_ = true;
+}
+
+Vec2 ImmersedBoundary::target_position(std::size_t p, double t) const {
+  if (body_.points.kind[p] == elastic::PointKind::Prescribed)
+    return body_.prescribed[static_cast<std::size_t>(body_.points.motion[p])](t).position;
+  return body_.points.position[p];
+}
+
+void ImmersedBoundary::mask_target_forces(std::span<Vec2> force) const {
+  if (!has_targets_) return;
+  for (std::size_t p = 0; p < force.size(); ++p)
+    if (is_target_[p]) force[p] = Vec2{};
 }
 
 double ImmersedBoundary::next_time_step() const {
@@ -159,7 +180,16 @@ void ImmersedBoundary::move_markers_with_fluid(double dt_s) {
   auto& v = body_.points.velocity;
   v.resize(x.size());
   interpolate_velocities(vel, x, settings_.kernel, v);
-  for (std::size_t p = 0; p < x.size(); ++p) x[p] += dt_s * v[p];
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    if (has_targets_ && is_target_[p]) {
+      // Target points are not carried by the fluid: they sit still or follow their path.
+      const Vec2 next = target_position(p, time_s_ + dt_s);
+      v[p] = (next - x[p]) / dt_s;
+      x[p] = next;
+    } else {
+      x[p] += dt_s * v[p];
+    }
+  }
 }
 
 CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
@@ -167,6 +197,7 @@ CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
   report.dt_s = dt_s;
   if (actuator_) actuator_(time_s_, body_);
   compute_forces(force_);
+  mask_target_forces(force_);
   fluid::FaceAccelerations& acc = fluid_.body_acceleration();
   acc.u.fill(0.0);
   acc.v.fill(0.0);
@@ -176,11 +207,12 @@ CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
   return report;
 }
 
-void ImmersedBoundary::project_spread_forces(std::span<const Vec2> forces) {
+void ImmersedBoundary::project_spread_forces(std::span<Vec2> forces) {
   fluid::Velocity& w = scratch_.velocity;
   w.u.fill(0.0);
   w.v.fill(0.0);
   const double rho = fluid_.settings().density_kg_per_m3;
+  mask_target_forces(forces);  // targets hold the body from outside; they push no fluid
   spread_forces(body_.points.position, forces, settings_.kernel, rho, w);
   const fluid::MacGrid& g = scratch_.grid;
   keep_only(w.u, fluid::interior_u_faces(g, homogeneous_));
@@ -194,6 +226,7 @@ void ImmersedBoundary::apply_response(const Eigen::VectorXd& forces, Eigen::Vect
   project_spread_forces(work_);
   velocity_.resize(work_.size());
   interpolate_velocities(scratch_.velocity, body_.points.position, settings_.kernel, velocity_);
+  mask_target_forces(velocity_);  // the fluid does not move target points
   velocity_at_markers = flatten(velocity_);
 }
 
@@ -214,6 +247,9 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   const auto& x = body_.points.position;
   velocity_.resize(x.size());
   interpolate_velocities(fluid_.state().velocity, x, settings_.kernel, velocity_);
+  if (has_targets_)  // target points move along their path: ΔX is known
+    for (std::size_t p = 0; p < x.size(); ++p)
+      if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + dt_s) - x[p]) / dt_s;
 
   // 2. Backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ.
   const Eigen::VectorXd fluid_velocity = flatten(velocity_);

@@ -55,9 +55,11 @@ struct CoupledStepReport {
 
 class ImmersedBoundary {
  public:
-  /// The fluid solver and body are referenced and advanced in place. The body's points are the
-  /// markers; their masses, drag and gravity are ignored (the body is neutrally buoyant and its
-  /// mass is the fluid's, §4.3.2).
+  /// The fluid solver and body are referenced and advanced in place. The body's free points are
+  /// the markers; their masses, drag and gravity are ignored (the body is neutrally buoyant and its
+  /// mass is the fluid's, §4.3.2). Pinned and prescribed points are target points: they are not
+  /// carried by the fluid and pass no force to it, but springs tie markers to them (rigid
+  /// obstacles held in place or moved on a path).
   ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& body, const CouplingSettings& settings,
                    Actuator actuator = {});
 
@@ -71,6 +73,8 @@ class ImmersedBoundary {
   double next_time_step() const;
   /// Advances fluid and markers by dt_s; the markers' velocities are stored in body().points.velocity.
   CoupledStepReport step(double dt_s);
+  /// Call after adding points to the body or changing their kinds.
+  void refresh_markers();
 
 
  private:
@@ -82,7 +86,11 @@ class ImmersedBoundary {
   /// the given marker forces cause, interpolated back at the markers.
   void apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers);
   /// Spreads forces into scratch_.velocity as accelerations and makes them divergence-free.
-  void project_spread_forces(std::span<const Vec2> forces);
+  void project_spread_forces(std::span<Vec2> forces);
+  /// Where target point p is at time t (pinned: where it is; prescribed: on its path).
+  Vec2 target_position(std::size_t p, double t) const;
+  /// Zeroes the entries of target points: they spread no force and are not moved by the fluid.
+  void mask_target_forces(std::span<Vec2> values) const;
   void move_markers_with_fluid(double dt_s);
 
   fluid::FluidSolver& fluid_;
@@ -96,6 +104,8 @@ class ImmersedBoundary {
   fluid::Boundaries homogeneous_;
   std::vector<Vec2> force_, velocity_, work_;
   Eigen::VectorXd last_increment_;
+  std::vector<char> is_target_;  ///< pinned or prescribed points: Peskin's target points
+  bool has_targets_ = false;
 };
 
 /// Problems that should stop a run, or "" when none: "numerical instability: ..." (NaN, runaway

@@ -3,6 +3,7 @@
 // meshes and an HTML viewer, with the swimming metrics and summary.json.
 #include "experiments/experiment.hpp"
 #include "experiments/jellyfish_runs.hpp"
+#include "io/errors.hpp"
 #include "render/animation_outputs.hpp"
 
 #include <cstdio>
@@ -14,14 +15,17 @@ namespace {
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   const SwimOutputOptions options = read_output_options(ctx.config);
+  if (settings.school.empty())
+    throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
+                     "of type \"jellyfish\"");
   render::PipelineSettings pipeline = render::pipeline_settings_from_config(ctx.config, "render");
   pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
-  jellyfish::Jellyfish probe(settings.jellyfish);   // bad geometry fails before any output
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
     write_metrics_csv(out, rec.metrics);
     write_slices_csv(out, rec.frames);
-    write_swim_plots(out, rec.metrics, "jellyfish");
+    write_scene_extras(out, rec);
+    if (!rec.metrics.empty()) write_swim_plots(out, rec.metrics, "jellyfish");
     nlohmann::ordered_json figures = swim_figures(settings, rec);
     const bool terminal = ctx.progress && ::isatty(STDOUT_FILENO);
     const render::AnimationOutputs anim = render::write_animation_outputs(

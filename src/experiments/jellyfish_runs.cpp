@@ -1,6 +1,8 @@
 #include "experiments/jellyfish_runs.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <numbers>
 
 #include "io/errors.hpp"
@@ -32,7 +34,7 @@ class FrameFiles {
       const std::string field = "field_" + id + ".vti", tracers = "tracers_" + id + ".vtp", body = "body_" + id + ".vtp";
       write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, sim.flow()); });
       write_via_temporary(frames_, tracers, [&](const auto& p) { io::write_points_vtp(p, sim.tracers().positions()); });
-      const elastic::Body& b = sim.jellyfish().body();
+      const elastic::Body& b = sim.body();
       std::vector<std::array<int, 2>> lines;
       for (std::size_t s = 0; s < b.linear.size(); ++s) lines.push_back({b.linear.i[s], b.linear.j[s]});
       write_via_temporary(frames_, body, [&](const auto& p) { io::write_lines_vtp(p, b.points.position, lines); });
@@ -56,6 +58,172 @@ class FrameFiles {
   SwimOutputOptions options_;
   std::vector<io::PvdEntry> entries_;
 };
+
+}  // namespace
+
+namespace {
+
+/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
+jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::TankSpec& t) {
+  jellyfish::JellyfishSpec j;
+  j.aperture_centre_m = c.vec2("jellyfish.position");
+  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
+        j.aperture_centre_m.y < t.height_m))
+    throw InputError("field 'jellyfish.position' = [" + io::format_double(j.aperture_centre_m.x) + ", " +
+                     io::format_double(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     io::format_double(t.width_m) + "] x [0, " + io::format_double(t.height_m) + "]");
+  j.tilt_rad = c.number("jellyfish.tilt_deg", io::Range::closed(-360, 360)) * kDegree;
+  j.diameter_m = c.number("jellyfish.diameter", io::Range::positive());
+  j.height_m = c.number("jellyfish.height", io::Range::positive());
+  j.tentacle_length_m = c.number("jellyfish.tentacle_length", io::Range::non_negative());
+  j.thickness_m = c.number("jellyfish.thickness", io::Range::positive());
+  j.model = c.choice("jellyfish.model", {"angular", "mesh"}) == "mesh" ? jellyfish::UmbrellaModel::mesh
+                                                                       : jellyfish::UmbrellaModel::angular;
+  const double spacing = c.number("jellyfish.spacing", io::Range::non_negative());
+  j.max_spacing_m = spacing > 0 ? spacing : jellyfish::peskin_spacing(t);
+  j.min_segments_per_side = static_cast<int>(c.integer("jellyfish.min_segments_per_side", 2, 1000));
+  j.bell_modulus_pa = c.number("jellyfish.bell_modulus", io::Range::positive());
+  j.muscle_modulus_pa = c.number("jellyfish.muscle_modulus", io::Range::non_negative());
+  j.bending_factor = c.number("jellyfish.bending_factor", io::Range::non_negative());
+  j.tentacle_volume_fraction = c.number("jellyfish.tentacle_volume_fraction", io::Range::positive());
+  j.tentacle_bending_factor = c.number("jellyfish.tentacle_bending_factor", io::Range::non_negative());
+  j.frequency_hz = c.number("jellyfish.frequency", io::Range{0.0, 100.0, true, false});
+  j.gamma = c.number("jellyfish.gamma", io::Range{0.0, 1.0, true, false});
+  j.profile.shape = *jellyfish::contraction_shape_from_string(
+      c.choice("jellyfish.contraction", jellyfish::contraction_shape_names()));
+  j.profile.contract_fraction = c.number("jellyfish.contract_fraction", io::Range{0.0, 1.0, true, true});
+  j.aperture_expansion_exponent = c.number("jellyfish.aperture_expansion_exponent", io::Range::closed(1.0, 10.0));
+  j.neural_delay_s = c.number("jellyfish.neural_delay", io::Range::non_negative());
+  j.closed_loop = c.boolean("jellyfish.controller");
+  j.controller_alpha = c.number("jellyfish.controller_alpha", io::Range::positive());
+  j.profile.trochoid_skew = c.number("jellyfish.trochoid_skew", io::Range{0.0, 1.0, false, true});
+  j.phase_cycles = c.number("jellyfish.phase", io::Range::closed(-1000, 1000));
+
+  j.steering = c.boolean("jellyfish.steering");
+  j.steer_target_m = c.vec2("jellyfish.steer_target");
+  j.steer_gain = c.number("jellyfish.steer_gain", io::Range::non_negative());
+  j.steer_max_bend_rad = c.number("jellyfish.steer_max_bend_deg", io::Range::closed(0.0, 90.0)) * kDegree;
+  j.noise_seed = static_cast<int>(c.integer("jellyfish.noise_seed", 0, 2147483647));
+  try {
+    jellyfish::validate(j);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  return j;
+}
+
+/// Polygon vertices from a text file: one "x y" or "x,y" pair (metres) per line; '#' comments.
+std::vector<Vec2> read_polygon_file(const std::string& path, const std::string& where) {
+  std::ifstream in(path);
+  if (!in) throw InputError(where + ": cannot read polygon file '" + path + "'");
+  std::vector<Vec2> points;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    Vec2 p;
+    if (!(fields >> p.x)) continue;  // blank line
+    std::string extra;
+    if (!(fields >> p.y) || (fields >> extra) || !std::isfinite(p.x) || !std::isfinite(p.y))
+      throw InputError(where + ": polygon file '" + path + "' line " + std::to_string(number) +
+                       ": expected two numbers \"x y\"");
+    points.push_back(p);
+  }
+  return points;
+}
+
+/// Fails on fields an object of this type does not have.
+void require_known_fields(const io::Config& o, const std::vector<std::string>& allowed, const std::string& where) {
+  for (const std::string& k : o.keys())
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(where + ": unknown field '" + k + "' (allowed: " + list + ")");
+    }
+}
+
+jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where) {
+  jellyfish::ObstacleSpec spec;
+  spec.name = where;
+  std::vector<std::string> allowed{"type", "stiffness", "velocity", "amplitude", "frequency"};
+  if (type == "circle") {
+    spec.shape = jellyfish::ObstacleShape::circle;
+    allowed.insert(allowed.end(), {"centre", "radius"});
+  } else if (type == "box") {
+    spec.shape = jellyfish::ObstacleShape::box;
+    allowed.insert(allowed.end(), {"centre", "size", "angle_deg"});
+  } else {
+    spec.shape = jellyfish::ObstacleShape::polygon;
+    allowed.insert(allowed.end(), {"points", "file"});
+  }
+  require_known_fields(o, allowed, where);
+  auto required_vec2 = [&](const char* key) {
+    if (!o.has(key)) throw InputError(where + ": missing field '" + key + "'");
+    return o.vec2(key);
+  };
+  if (spec.shape != jellyfish::ObstacleShape::polygon) spec.centre_m = required_vec2("centre");
+  if (spec.shape == jellyfish::ObstacleShape::circle) {
+    if (!o.has("radius")) throw InputError(where + ": missing field 'radius'");
+    spec.radius_m = o.number("radius", io::Range::positive());
+  }
+  if (spec.shape == jellyfish::ObstacleShape::box) {
+    spec.size_m = required_vec2("size");
+    if (o.has("angle_deg")) spec.angle_rad = o.number("angle_deg", io::Range::closed(-360, 360)) * kDegree;
+  }
+  if (spec.shape == jellyfish::ObstacleShape::polygon) {
+    if (o.has("points") == o.has("file"))
+      throw InputError(where + ": a polygon needs exactly one of 'points' = [x0, y0, x1, y1, ...] or 'file'");
+    if (o.has("file")) {
+      spec.vertices_m = read_polygon_file(o.string("file"), where);
+    } else {
+      const std::vector<double> xy = o.numbers("points");
+      if (xy.size() % 2 != 0) throw InputError(where + ": field 'points' needs an even count [x0, y0, x1, y1, ...]");
+      for (std::size_t k = 0; k + 1 < xy.size(); k += 2) spec.vertices_m.push_back({xy[k], xy[k + 1]});
+    }
+  }
+  if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", io::Range::positive());
+  if (o.has("velocity")) spec.motion.velocity_m_per_s = o.vec2("velocity");
+  if (o.has("amplitude")) spec.motion.amplitude_m = o.vec2("amplitude");
+  if (o.has("frequency")) spec.motion.frequency_hz = o.number("frequency", io::Range::non_negative());
+  try {
+    jellyfish::validate(spec);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  return spec;
+}
+
+/// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template) and
+/// rigid obstacles (circle, box, polygon), each with an optional prescribed path.
+void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
+  const std::size_t count = c.array_size("objects");
+  for (std::size_t k = 0; k < count; ++k) {
+    io::Config o = c.element("objects", k);
+    const std::string where = "objects[" + std::to_string(k) + "]";
+    if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box or polygon)");
+    std::string type;
+    try {
+      type = o.choice("type", {"jellyfish", "circle", "box", "polygon"});
+    } catch (const InputError& e) {
+      throw InputError(where + ": unknown object " + e.what());
+    }
+    const std::string name = where + " (" + type + ")";
+    try {
+      if (type == "jellyfish") {
+        o.erase("type");
+        io::Config jc = c;
+        jc.merge(o.nested_under("jellyfish"));
+        s.school.push_back(read_jellyfish(jc, s.tank));
+      } else {
+        s.obstacles.push_back(read_obstacle(o, type, name));
+      }
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError(message.rfind(name, 0) == 0 ? message : name + ": " + message);
+    }
+  }
+}
 
 }  // namespace
 
@@ -94,40 +262,10 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
     throw InputError(std::string("field 'tank.boundaries': ") + e.what());
   }
   t.tracers_per_side = static_cast<int>(c.integer("tank.tracers_per_side", 0, 1000));
+  t.current_m_per_s = c.vec2("tank.current");
 
-  jellyfish::JellyfishSpec& j = s.jellyfish;
-  j.aperture_centre_m = c.vec2("jellyfish.position");
-  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
-        j.aperture_centre_m.y < t.height_m))
-    throw InputError("field 'jellyfish.position' = [" + io::format_double(j.aperture_centre_m.x) + ", " +
-                     io::format_double(j.aperture_centre_m.y) + "] is outside the tank [0, " +
-                     io::format_double(t.width_m) + "] x [0, " + io::format_double(t.height_m) + "]");
-  j.tilt_rad = c.number("jellyfish.tilt_deg", io::Range::closed(-360, 360)) * kDegree;
-  j.diameter_m = c.number("jellyfish.diameter", io::Range::positive());
-  j.height_m = c.number("jellyfish.height", io::Range::positive());
-  j.tentacle_length_m = c.number("jellyfish.tentacle_length", io::Range::non_negative());
-  j.thickness_m = c.number("jellyfish.thickness", io::Range::positive());
-  j.model = c.choice("jellyfish.model", {"angular", "mesh"}) == "mesh" ? jellyfish::UmbrellaModel::mesh
-                                                                       : jellyfish::UmbrellaModel::angular;
-  const double spacing = c.number("jellyfish.spacing", io::Range::non_negative());
-  j.max_spacing_m = spacing > 0 ? spacing : jellyfish::peskin_spacing(t);
-  j.min_segments_per_side = static_cast<int>(c.integer("jellyfish.min_segments_per_side", 2, 1000));
-  j.bell_modulus_pa = c.number("jellyfish.bell_modulus", io::Range::positive());
-  j.muscle_modulus_pa = c.number("jellyfish.muscle_modulus", io::Range::non_negative());
-  j.bending_factor = c.number("jellyfish.bending_factor", io::Range::non_negative());
-  j.tentacle_volume_fraction = c.number("jellyfish.tentacle_volume_fraction", io::Range::positive());
-  j.tentacle_bending_factor = c.number("jellyfish.tentacle_bending_factor", io::Range::non_negative());
-  j.frequency_hz = c.number("jellyfish.frequency", io::Range{0.0, 100.0, true, false});
-  j.gamma = c.number("jellyfish.gamma", io::Range{0.0, 1.0, true, false});
-  j.profile.shape = *jellyfish::contraction_shape_from_string(
-      c.choice("jellyfish.contraction", jellyfish::contraction_shape_names()));
-  j.profile.contract_fraction = c.number("jellyfish.contract_fraction", io::Range{0.0, 1.0, true, true});
-  j.aperture_expansion_exponent = c.number("jellyfish.aperture_expansion_exponent", io::Range::closed(1.0, 10.0));
-  j.neural_delay_s = c.number("jellyfish.neural_delay", io::Range::non_negative());
-  j.closed_loop = c.boolean("jellyfish.controller");
-  j.controller_alpha = c.number("jellyfish.controller_alpha", io::Range::positive());
-  j.profile.trochoid_skew = c.number("jellyfish.trochoid_skew", io::Range{0.0, 1.0, false, true});
-  j.phase_cycles = c.number("jellyfish.phase", io::Range::closed(-1000, 1000));
+  if (c.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
+  read_objects(c, s);
 
   coupling::CouplingSettings& k = s.coupling;
   k.scheme = *coupling::scheme_from_string(c.choice("coupling.scheme", {"semi-implicit", "explicit"}));
@@ -142,9 +280,9 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   s.limits.max_strain = c.number("stability.max_strain", io::Range::positive());
   s.limits.max_bend_rad = c.number("stability.max_bend_deg", io::Range{0.0, 180.0, true, false}) * kDegree;
   try {
-    jellyfish::validate(j);
+    jellyfish::validate_layout(s);
   } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
+    throw InputError(std::string("scene layout: ") + e.what());
   }
   return s;
 }
@@ -164,20 +302,27 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
   render::FieldPicture p;
   p.state = &sim.flow();
   p.tracers_m = sim.tracers().positions();
-  const elastic::Body& b = sim.jellyfish().body();
-  const auto& muscles = sim.jellyfish().layout().muscle_springs;
-  for (std::size_t s = 0; s < b.linear.size(); ++s) {
-    const std::array<Vec2, 2> seg{b.points.position[static_cast<std::size_t>(b.linear.i[s])],
-                                  b.points.position[static_cast<std::size_t>(b.linear.j[s])]};
-    const bool muscle = std::find(muscles.begin(), muscles.end(), static_cast<int>(s)) != muscles.end();
-    (muscle ? p.thin_segments_m : p.segments_m).push_back(seg);
+  for (std::size_t j = 0; j < sim.jellyfish_count(); ++j) {
+    const elastic::Body& b = sim.jellyfish(j).body();
+    const auto& muscles = sim.jellyfish(j).layout().muscle_springs;
+    for (std::size_t s = 0; s < b.linear.size(); ++s) {
+      const std::array<Vec2, 2> seg{b.points.position[static_cast<std::size_t>(b.linear.i[s])],
+                                    b.points.position[static_cast<std::size_t>(b.linear.j[s])]};
+      const bool muscle = std::find(muscles.begin(), muscles.end(), static_cast<int>(s)) != muscles.end();
+      (muscle ? p.thin_segments_m : p.segments_m).push_back(seg);
+    }
+  }
+  for (std::size_t o = 0; o < sim.obstacle_count(); ++o) {
+    const std::vector<Vec2> outline = sim.obstacle_outline(o);
+    for (std::size_t k = 0; k < outline.size(); ++k) p.segments_m.push_back({outline[k], outline[(k + 1) % outline.size()]});
   }
   char caption[64];
   std::snprintf(caption, sizeof caption, "t = %.2f s", sim.time_s());
   p.caption = caption;
-  if (zoom_diameters > 0) {
+  // One jellyfish alone: follow it; a busier tank: show all of it.
+  if (zoom_diameters > 0 && sim.jellyfish_count() == 1 && sim.obstacle_count() == 0) {
     const jellyfish::BellShape bell = jellyfish::measure_bell(sim.jellyfish().umbrella_points());
-    const double half = 0.5 * zoom_diameters * sim.settings().jellyfish.diameter_m;
+    const double half = 0.5 * zoom_diameters * sim.settings().jellyfish().diameter_m;
     p.view_m = std::array<Vec2, 2>{bell.centroid - Vec2{half, half}, bell.centroid + Vec2{half, half}};
   }
   return p;
@@ -189,15 +334,24 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   jellyfish::SwimSimulation sim(settings);
   std::unique_ptr<FrameFiles> files;
   if (out && (options.vtk || options.pictures)) files = std::make_unique<FrameFiles>(*out, options);
+  rec.others.resize(sim.jellyfish_count() > 1 ? sim.jellyfish_count() - 1 : 0);
+  std::size_t frame = 0;
   rec.stats = sim.run(
       [&](const jellyfish::SwimSimulation& s) -> std::string {
-        if (files) files->write(s, rec.frames.size());
-        rec.frames.push_back(s.jellyfish().slice_frame(s.time_s()));
+        if (files) files->write(s, frame);
+        ++frame;
+        rec.frame_times.push_back(s.time_s());
+        if (s.jellyfish_count() > 0) rec.frames.push_back(s.jellyfish().slice_frame(s.time_s()));
+        for (std::size_t j = 1; j < s.jellyfish_count(); ++j) rec.others[j - 1].push_back(s.jellyfish(j).slice_frame(s.time_s()));
+        std::vector<Vec2> forces;
+        for (std::size_t o = 0; o < s.obstacle_count(); ++o) forces.push_back(s.obstacle_force(o));
+        rec.obstacle_forces.push_back(std::move(forces));
         return {};
       },
       progress);
-  rec.metrics = jellyfish::compute_metrics(
-      rec.frames, {settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)});
+  const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
+  if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
+  for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));
   return rec;
 }
 
@@ -209,6 +363,18 @@ void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::Me
     csv.row({r.t, r.position, r.velocity, r.acceleration, r.volume, r.aperture_area, r.volume_ratio, r.aperture_ratio,
              r.thrust, r.lateral, r.daniel_velocity, r.daniel_position});
   out.write_text(name, csv.text());
+}
+
+void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec) {
+  for (std::size_t k = 0; k < rec.other_metrics.size(); ++k)
+    write_metrics_csv(out, rec.other_metrics[k], "metrics_jellyfish_" + std::to_string(k + 2) + ".csv");
+  if (!rec.obstacle_forces.empty() && !rec.obstacle_forces.front().empty()) {
+    io::CsvWriter csv({"t", "obstacle", "force_x", "force_y"});
+    for (std::size_t f = 0; f < rec.obstacle_forces.size(); ++f)
+      for (std::size_t o = 0; o < rec.obstacle_forces[f].size(); ++o)
+        csv.row({rec.frame_times[f], static_cast<double>(o), rec.obstacle_forces[f][o].x, rec.obstacle_forces[f][o].y});
+    out.write_text("obstacles.csv", csv.text());
+  }
 }
 
 void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames) {
@@ -263,27 +429,53 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
   nlohmann::ordered_json j;
   j["units"] = {{"length", "m"}, {"time", "s"}, {"velocity", "m/s"}, {"acceleration", "m/s^2"}, {"volume", "m^3"},
                 {"area", "m^2"}, {"thrust", "N"}, {"modulus", "Pa"}};
-  j["bell_height"] = settings.jellyfish.height_m;
-  j["bell_diameter"] = settings.jellyfish.diameter_m;
-  j["frequency"] = settings.jellyfish.frequency_hz;
-  j["cycles"] = jellyfish::cycles(rec.stats.simulated_seconds, settings.jellyfish.frequency_hz);
-  const double distance = rec.metrics.empty() ? 0.0 : rec.metrics.back().position;
-  const double lateral = rec.metrics.empty() ? 0.0 : rec.metrics.back().lateral;
-  j["distance_travelled"] = distance;
-  j["distance_in_bell_heights"] = distance / settings.jellyfish.height_m;
-  j["lateral_drift"] = lateral;
-  j["mean_speed"] = rec.stats.simulated_seconds > 0 ? distance / rec.stats.simulated_seconds : 0.0;
-  std::vector<double> volume;
-  for (const auto& r : rec.metrics) volume.push_back(r.volume);
-  j["volume_frequency"] = jellyfish::dominant_frequency(volume, settings.frame_interval_s);
-  double vmin = INFINITY, amin = INFINITY;
-  for (const auto& r : rec.metrics) {
-    vmin = std::min(vmin, r.volume_ratio);
-    amin = std::min(amin, r.aperture_ratio);
+  if (!settings.school.empty()) {
+    j["bell_height"] = settings.jellyfish().height_m;
+    j["bell_diameter"] = settings.jellyfish().diameter_m;
+    j["frequency"] = settings.jellyfish().frequency_hz;
+    j["cycles"] = jellyfish::cycles(rec.stats.simulated_seconds, settings.jellyfish().frequency_hz);
+    const double distance = rec.metrics.empty() ? 0.0 : rec.metrics.back().position;
+    const double lateral = rec.metrics.empty() ? 0.0 : rec.metrics.back().lateral;
+    j["distance_travelled"] = distance;
+    j["distance_in_bell_heights"] = distance / settings.jellyfish().height_m;
+    j["lateral_drift"] = lateral;
+    j["mean_speed"] = rec.stats.simulated_seconds > 0 ? distance / rec.stats.simulated_seconds : 0.0;
+    std::vector<double> volume;
+    for (const auto& r : rec.metrics) volume.push_back(r.volume);
+    j["volume_frequency"] = jellyfish::dominant_frequency(volume, settings.frame_interval_s);
+    double vmin = INFINITY, amin = INFINITY;
+    for (const auto& r : rec.metrics) {
+      vmin = std::min(vmin, r.volume_ratio);
+      amin = std::min(amin, r.aperture_ratio);
+    }
+    j["min_volume_ratio"] = rec.metrics.empty() ? 0.0 : vmin;
+    j["min_aperture_ratio"] = rec.metrics.empty() ? 0.0 : amin;
+    j["daniel_distance"] = rec.metrics.empty() ? 0.0 : rec.metrics.back().daniel_position;
   }
-  j["min_volume_ratio"] = rec.metrics.empty() ? 0.0 : vmin;
-  j["min_aperture_ratio"] = rec.metrics.empty() ? 0.0 : amin;
-  j["daniel_distance"] = rec.metrics.empty() ? 0.0 : rec.metrics.back().daniel_position;
+  j["jellyfish_count"] = settings.school.size();
+  if (settings.school.size() > 1) {
+    nlohmann::ordered_json each = nlohmann::ordered_json::array();
+    auto describe = [&](const std::vector<jellyfish::MetricsRow>& rows) {
+      return nlohmann::ordered_json{{"distance_travelled", rows.empty() ? 0.0 : rows.back().position},
+                                    {"lateral_drift", rows.empty() ? 0.0 : rows.back().lateral}};
+    };
+    each.push_back(describe(rec.metrics));
+    for (const auto& rows : rec.other_metrics) each.push_back(describe(rows));
+    j["school"] = each;
+  }
+  j["obstacle_count"] = settings.obstacles.size();
+  if (!settings.obstacles.empty() && !rec.obstacle_forces.empty()) {
+    // Mean force over the second half of the run (after the start-up transient).
+    nlohmann::ordered_json each = nlohmann::ordered_json::array();
+    for (std::size_t o = 0; o < settings.obstacles.size(); ++o) {
+      Vec2 sum{};
+      std::size_t n = 0;
+      for (std::size_t f = rec.obstacle_forces.size() / 2; f < rec.obstacle_forces.size(); ++f, ++n) sum += rec.obstacle_forces[f][o];
+      const Vec2 mean = n > 0 ? (1.0 / static_cast<double>(n)) * sum : Vec2{};
+      each.push_back({{"name", settings.obstacles[o].name}, {"mean_force", {mean.x, mean.y}}});
+    }
+    j["obstacles"] = each;
+  }
   j["simulated_seconds"] = rec.stats.simulated_seconds;
   j["wall_seconds"] = rec.stats.wall_seconds;
   j["realtime_factor"] = rec.stats.wall_seconds > 0 ? rec.stats.simulated_seconds / rec.stats.wall_seconds : 0.0;
@@ -291,7 +483,7 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
   j["smallest_step"] = rec.stats.smallest_step_s;
   j["largest_step"] = rec.stats.largest_step_s;
   j["krylov_iterations"] = rec.stats.krylov_iterations;
-  j["frames"] = rec.frames.size();
+  j["frames"] = rec.frame_times.size();
   j["markers"] = rec.frames.empty() ? 0 : rec.frames.front().umbrella.size();
   j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
   j["fluid_solver"] = settings.tank.solver;

@@ -26,9 +26,13 @@ struct SwimOutputOptions {
 SwimOutputOptions read_output_options(const io::Config& c);
 
 struct SwimRecording {
-  std::vector<jellyfish::SliceFrame> frames;
+  std::vector<double> frame_times;                  ///< s, one per recorded frame
+  std::vector<jellyfish::SliceFrame> frames;        ///< the first jellyfish (metrics.csv)
   jellyfish::SwimRunStats stats;
   std::vector<jellyfish::MetricsRow> metrics;
+  std::vector<std::vector<jellyfish::SliceFrame>> others;        ///< jellyfish 2, 3, …
+  std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
+  std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
 };
 
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).
@@ -39,6 +43,9 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
 /// aperture_ratio, thrust, lateral, daniel_velocity, daniel_position.
 void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
                        const std::string& name = "metrics.csv");
+/// For busier tanks: metrics_jellyfish_N.csv for the second jellyfish on (same columns as
+/// metrics.csv) and obstacles.csv (t, obstacle, force_x, force_y: the fluid's force, N/m).
+void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec);
 /// slices.csv: frame, t, part (umbrella or tentacle_k), index, x, y — the recorded 2D slices.
 void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames);
 /// kinematics.png (position, velocity, acceleration; Figs 8.15–8.17, with Daniel's model) and

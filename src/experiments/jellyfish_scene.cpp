@@ -9,12 +9,12 @@ namespace {
 std::function<Outcome(const io::OutputDir&)> prepare_jellyfish(const Context& ctx) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   const SwimOutputOptions options = read_output_options(ctx.config);
-  jellyfish::Jellyfish probe(settings.jellyfish);  // builds the model once so bad geometry fails before output
   return [settings, options, ctx](const io::OutputDir& out) {
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
     write_metrics_csv(out, rec.metrics);
     write_slices_csv(out, rec.frames);
-    write_swim_plots(out, rec.metrics, "jellyfish");
+    write_scene_extras(out, rec);
+    if (!rec.metrics.empty()) write_swim_plots(out, rec.metrics, "jellyfish");
     write_summary(out, "simulate", ctx.config, swim_figures(settings, rec), rec.stats.failure);
     return Outcome{rec.stats.failure};
   };

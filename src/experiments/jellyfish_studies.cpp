@@ -184,8 +184,12 @@ std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& 
         render::write_field_panels_png(pictures, std::min<int>(3, static_cast<int>(pictures.size())), po, p);
       });
     }
-    SwimRecording rec{frames, stats, jellyfish::compute_metrics(frames, {settings.tank.density_kg_per_m3,
-                                                                        std::max(settings.tank.viscosity_m2_per_s, 1e-9)})};
+    SwimRecording rec;
+    rec.frames = frames;
+    for (const auto& f : frames) rec.frame_times.push_back(f.time_s);
+    rec.stats = stats;
+    rec.metrics = jellyfish::compute_metrics(
+        frames, {settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)});
     write_metrics_csv(out, rec.metrics);
     nlohmann::ordered_json fig = swim_figures(settings, rec);
     const std::string kind = stats.failure.rfind("structural", 0) == 0 ? "structural"
@@ -193,7 +197,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& 
     fig["instability"] = kind;
     fig["expected_instability"] = expected;
     fig["instability_message"] = stats.failure;
-    fig["bell_modulus"] = settings.jellyfish.bell_modulus_pa;
+    fig["bell_modulus"] = settings.jellyfish().bell_modulus_pa;
     write_summary(out, "experiment " + name, ctx.config, fig, "");
     return Outcome{};
   };
@@ -220,7 +224,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     auto worker = [&]() {
       for (std::size_t k = next++; k < frequencies.size(); k = next++) {
         jellyfish::SwimSettings s = base;
-        s.jellyfish.frequency_hz = frequencies[k];
+        s.school.front().frequency_hz = frequencies[k];
         results[k].frequency = frequencies[k];
         results[k].rec = run_swim(s, {}, nullptr, {});
       }
@@ -271,7 +275,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     fig["threads"] = threads;
     fig["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fig["simulated_seconds"] = base.duration_s;
-    fig["bell_height"] = base.jellyfish.height_m;
+    fig["bell_height"] = base.jellyfish().height_m;
     fig["runs"] = table;
     write_summary(out, "sweep", ctx.config, fig, "");
     return Outcome{};
@@ -296,7 +300,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_fluidless(const Context& ct
   time.frame_interval = settings.frame_interval_s;
   const bool compare = ctx.config.boolean("fluidless.compare_with_fluid");
   return [settings, fl, point_mass, time, compare, ctx](const io::OutputDir& out) {
-    jellyfish::JellyfishSpec spec = settings.jellyfish;
+    jellyfish::JellyfishSpec spec = settings.jellyfish();
     spec.point_mass_kg = point_mass;
     jellyfish::Jellyfish jelly(spec);
     jellyfish::FluidlessSystem system(jelly, fl);
@@ -315,6 +319,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_fluidless(const Context& ct
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     SwimRecording rec;
     rec.frames = frames;
+    for (const auto& f : frames) rec.frame_times.push_back(f.time_s);
     rec.stats.simulated_seconds = result.statistics.simulated_seconds;
     rec.stats.wall_seconds = wall;
     rec.stats.steps = result.statistics.steps;
@@ -369,7 +374,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_coupling_stability(const Co
     fig["largest_stable_dt_explicit"] = largest[0];
     fig["largest_stable_dt_semi_implicit"] = largest[1];
     fig["stable_step_ratio"] = largest[0] > 0 ? largest[1] / largest[0] : 0.0;
-    fig["bell_modulus"] = base.jellyfish.bell_modulus_pa;
+    fig["bell_modulus"] = base.jellyfish().bell_modulus_pa;
     fig["runs"] = runs;
     write_summary(out, "experiment coupling-stability", ctx.config, fig, "");
     return Outcome{};

@@ -53,6 +53,11 @@ std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacG
                               "' (expected eulerian or semi-lagrangian)");
 }
 
+void FluidSolver::set_viscosity(double nu_m2_per_s) {
+  if (!(nu_m2_per_s >= 0.0 && std::isfinite(nu_m2_per_s))) throw std::invalid_argument("viscosity must be >= 0");
+  settings_.viscosity_m2_per_s = nu_m2_per_s;
+}
+
 double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor,
                            const Boundaries* sides) {
   const MacGrid& g = vel.u.grid();

@@ -211,6 +211,41 @@ void Config::set(std::string_view assignment) {
   }
 }
 
+std::size_t Config::array_size(std::string_view key) const {
+  const toml::node& n = impl_->node(key);
+  auto a = n.as_array();
+  if (a == nullptr) impl_->wrong_type(key, n, "array");
+  return a->size();
+}
+
+Config Config::element(std::string_view key, std::size_t index) const {
+  const std::string path = std::string(key) + "[" + std::to_string(index) + "]";
+  const toml::node& n = impl_->node(path);
+  auto t = n.as_table();
+  if (t == nullptr) impl_->wrong_type(path, n, "table");
+  Config c;
+  c.impl_->table = *t;
+  c.impl_->source = path;
+  return c;
+}
+
+Config Config::nested_under(std::string_view key) const {
+  Config c;
+  c.impl_->table.insert(key, impl_->table);
+  c.impl_->source = impl_->source;
+  return c;
+}
+
+std::vector<std::string> Config::keys() const {
+  std::vector<std::string> k;
+  for (auto&& [name, value] : impl_->table) k.emplace_back(name.str());
+  return k;
+}
+
+void Config::erase(std::string_view key) { impl_->table.erase(key); }
+
+const std::string& Config::source() const { return impl_->source; }
+
 bool Config::has(std::string_view key) const { return impl_->table.at_path(key).node() != nullptr; }
 
 double Config::number(std::string_view key, Range range) const {

@@ -56,6 +56,19 @@ class Config {
   void set(std::string_view assignment);
 
   bool has(std::string_view key) const;
+  /// Number of entries of an array field (e.g. the [[objects]] of a scene).
+  std::size_t array_size(std::string_view key) const;
+  /// Entry `index` of an array of tables as a configuration of its own, named "key[index]" in
+  /// messages; it has no schema, so read its fields with has() and the typed getters.
+  Config element(std::string_view key, std::size_t index) const;
+  /// This configuration as the table `key` of an otherwise empty one (to merge as an overlay).
+  Config nested_under(std::string_view key) const;
+  /// The names of the top-level fields.
+  std::vector<std::string> keys() const;
+  /// Removes a top-level field if present.
+  void erase(std::string_view key);
+  /// Where the configuration came from (a file path, "built-in scene", "objects[2]").
+  const std::string& source() const;
   double number(std::string_view key, Range range = {}) const;
   std::int64_t integer(std::string_view key, std::int64_t min, std::int64_t max) const;
   bool boolean(std::string_view key) const;

@@ -186,7 +186,80 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
       add_joint(strand[k - 1], strand[k], strand[k + 1], kt, t_spacing, s.tentacle_bending_factor);
     layout_.tentacles.push_back(strand);
   }
+  base_stiffness_ = body_.linear.stiffness;
+  base_joint_stiffness_ = body_.angular.stiffness;
+  base_rest_angle_ = body_.angular.rest_angle;
+  // Umbrella joints belong to the left (before the apex) or the right side; tentacle joints to neither.
+  for (std::size_t a = 0; a < body_.angular.size(); ++a) {
+    const int i = body_.angular.i[a], j = body_.angular.j[a], k = body_.angular.k[a];
+    const bool umbrella = i < n && j < n && k < n;
+    joint_side_.push_back(!umbrella || j == layout_.apex ? 0 : (j < layout_.apex ? -1 : 1));
+  }
   actuate(0.0);
+}
+
+Vec2 Jellyfish::heading() const {
+  const auto& x = body_.points.position;
+  const Vec2 aperture = 0.5 * (x[static_cast<std::size_t>(layout_.umbrella.front())] +
+                               x[static_cast<std::size_t>(layout_.umbrella.back())]);
+  const Vec2 axis = x[static_cast<std::size_t>(layout_.umbrella[static_cast<std::size_t>(layout_.apex)])] - aperture;
+  return norm(axis) > 0 ? axis / norm(axis) : initial_axis();
+}
+
+void Jellyfish::set_frequency(double hz, double t) {
+  if (!(hz > 0 && hz <= 100)) throw std::invalid_argument("frequency must be in (0, 100] Hz");
+  // Keep f·t + phase continuous at time t.
+  spec_.phase_cycles += (spec_.frequency_hz - hz) * t;
+  spec_.frequency_hz = hz;
+}
+
+void Jellyfish::set_gamma(double gamma) {
+  if (!(gamma > 0 && gamma <= 1)) throw std::invalid_argument("gamma must be in (0, 1]");
+  spec_.gamma = gamma;
+}
+
+void Jellyfish::set_stiffness_scale(double scale) {
+  if (!(scale > 0 && std::isfinite(scale))) throw std::invalid_argument("stiffness scale must be > 0");
+  for (std::size_t s = 0; s < body_.linear.size(); ++s) body_.linear.stiffness[s] = scale * base_stiffness_[s];
+  for (int m : layout_.muscle_springs) body_.linear.stiffness[static_cast<std::size_t>(m)] = base_stiffness_[static_cast<std::size_t>(m)];
+  for (std::size_t a = 0; a < body_.angular.size(); ++a) body_.angular.stiffness[a] = scale * base_joint_stiffness_[a];
+}
+
+void Jellyfish::set_steer_target(std::optional<Vec2> target_m) {
+  spec_.steering = target_m.has_value();
+  if (target_m) spec_.steer_target_m = *target_m;
+  steer_updated_phase_ = -1e300;  // choose a new bias at the next actuation
+  if (!target_m) {
+    steer_bias_ = 0.0;
+    body_.angular.rest_angle = base_rest_angle_;
+  }
+}
+
+void Jellyfish::steer(double t) {
+  // The bias is chosen once per cycle, at its start, from the heading error toward the target:
+  // to turn counter-clockwise (target to the left of the heading) the right side strokes harder.
+  const double cycle = std::floor(spec_.frequency_hz * t + spec_.phase_cycles);
+  if (cycle != steer_updated_phase_) {
+    steer_updated_phase_ = cycle;
+    const Vec2 h = heading();
+    const auto& x = body_.points.position;
+    const Vec2 aperture = 0.5 * (x[static_cast<std::size_t>(layout_.umbrella.front())] +
+                                 x[static_cast<std::size_t>(layout_.umbrella.back())]);
+    const Vec2 to_target = spec_.steer_target_m - aperture;
+    const double error = norm(to_target) > 0 ? std::atan2(cross(h, to_target), dot(h, to_target)) : 0.0;
+    steer_bias_ = std::clamp(-spec_.steer_gain * error, -spec_.steer_max_bend_rad, spec_.steer_max_bend_rad);
+  }
+  // Mean contraction of the muscles now, 0 relaxed … 1 fully contracted.
+  double contraction = 0.0;
+  for (std::size_t k = 0; k < layout_.muscle_springs.size(); ++k) contraction += 1.0 - muscle_activation(k, t);
+  contraction /= std::max<std::size_t>(1, layout_.muscle_springs.size());
+  // The umbrella turns clockwise from the left tip to the right one (negative turning angles):
+  // bending a side inward makes its joints' rest angles more negative.
+  for (std::size_t a = 0; a < body_.angular.size(); ++a) {
+    const int side = joint_side_[a];
+    const bool active = (side < 0 && steer_bias_ > 0) || (side > 0 && steer_bias_ < 0);
+    body_.angular.rest_angle[a] = base_rest_angle_[a] - (active ? std::abs(steer_bias_) * contraction : 0.0);
+  }
 }
 
 double Jellyfish::muscle_activation(std::size_t k, double t) const {
@@ -209,6 +282,7 @@ void Jellyfish::actuate(double t) {
       body_.linear.rest_length[spring] = contracted_rest_length(l_ru, spec_.gamma, muscle_activation(k, t));
     }
   }
+  if (spec_.steering || steer_bias_ != 0.0) steer(t);
 }
 
 std::vector<Vec2> Jellyfish::umbrella_points() const {

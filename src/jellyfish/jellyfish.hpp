@@ -6,6 +6,7 @@
 //    contraction function drives (eq. 7.5) with a neural phase delay per spring (§6.2, §7.1);
 //  * two tentacle strands hanging from the aperture, with linear and angular springs.
 // Units: metres, seconds; spring constants are per metre of slice depth (see docs/jellyfish.md).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,16 @@ struct JellyfishSpec {
   bool closed_loop = false;               ///< eq. 7.2 controller instead of the open-loop function
   double controller_alpha = 2.0;
   double phase_cycles = 0.0;              ///< phase offset of this individual (for several jellyfish)
+
+  // Steering (beyond the thesis, whose turning attempt failed, §9.2.2): the angular springs of one
+  // side of the umbrella are driven like muscles, their rest angles bent further inward in step
+  // with the contraction, so that side strokes harder and the jellyfish turns.
+  bool steering = false;
+  Vec2 steer_target_m{};                  ///< the point to turn toward
+  double steer_gain = 1.0;                ///< rest-angle change per radian of heading error
+  double steer_max_bend_rad = 0.35;       ///< largest rest-angle change of a joint
+
+  int noise_seed = 1;                     ///< the individual's noise seed for rendering (§7.3)
 };
 
 /// Indices into the body of the parts of the slice.
@@ -81,12 +92,34 @@ class Jellyfish {
   std::vector<Vec2> umbrella_points() const;
   /// Unit vector from the aperture centre to the apex at the start (the swimming axis).
   Vec2 initial_axis() const { return rotated(Vec2{0.0, 1.0}, spec_.tilt_rad); }
+  /// Unit vector from the aperture centre to the apex now.
+  Vec2 heading() const;
+
+  // Live edits (the interactive viewer and steering).
+  /// New contraction frequency; the phase offset changes so the phase at time t stays the same.
+  void set_frequency(double hz, double t);
+  void set_gamma(double gamma);
+  /// Scales the umbrella and tentacle spring constants relative to those built from the spec.
+  void set_stiffness_scale(double scale);
+  void set_steer_target(std::optional<Vec2> target_m);
+  /// The steering bias now: signed rest-angle change (rad) of the steering side's joints at full
+  /// contraction; positive bends the left side (umbrella start) inward.
+  double steer_bias() const { return steer_bias_; }
 
  private:
   JellyfishSpec spec_;
   JellyfishLayout layout_;
   elastic::Body body_;
+  /// Steering (beyond the thesis): chooses the bias once per cycle and bends the active side.
+  void steer(double t);
+
   std::vector<RestLengthController> controllers_;
+  std::vector<double> base_stiffness_;        ///< linear spring constants from the spec
+  std::vector<double> base_joint_stiffness_;  ///< angular spring constants from the spec
+  std::vector<double> base_rest_angle_;       ///< angular rest angles from the spec
+  std::vector<int> joint_side_;               ///< −1 left, +1 right, 0 apex or tentacle
+  double steer_bias_ = 0.0;
+  double steer_updated_phase_ = -1e300;       ///< cycle in which the bias was last chosen
 };
 
 /// Checks the spec; throws std::invalid_argument naming the field and its allowed range.

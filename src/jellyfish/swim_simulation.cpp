@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace jellysim::jellyfish {
 
@@ -16,10 +17,74 @@ std::string when(double t, long step) {
   return s.str();
 }
 
+std::string format_length(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v << " m";
+  return s.str();
+}
+
+/// Appends `part` to `whole`, shifting its point indices.
+void append_body(const elastic::Body& part, elastic::Body& whole) {
+  const int offset = static_cast<int>(whole.points.size());
+  for (std::size_t p = 0; p < part.points.size(); ++p)
+    whole.add_point(part.points.position[p], part.points.mass[p] > 0 ? part.points.mass[p] : 1e-6);
+  for (std::size_t s = 0; s < part.linear.size(); ++s)
+    whole.add_linear_spring(part.linear.i[s] + offset, part.linear.j[s] + offset, part.linear.stiffness[s],
+                            part.linear.rest_length[s]);
+  for (std::size_t s = 0; s < part.angular.size(); ++s)
+    whole.add_angular_spring(part.angular.i[s] + offset, part.angular.j[s] + offset, part.angular.k[s] + offset,
+                             part.angular.stiffness[s], part.angular.rest_angle[s]);
+}
+
+/// The outline a jellyfish occupies at the start: its umbrella closed across the aperture, with
+/// the tentacles' extent, as a polygon (for overlap and containment checks).
+std::vector<Vec2> jellyfish_outline(const Jellyfish& j) {
+  std::vector<Vec2> p = j.umbrella_points();
+  return p;
+}
+
 }  // namespace
+
+const JellyfishSpec& SwimSettings::jellyfish() const {
+  if (school.empty()) throw std::logic_error("the scene has no jellyfish");
+  return school.front();
+}
 
 double peskin_spacing(const TankSpec& tank) {
   return 0.5 * std::min(tank.width_m / tank.cells_x, tank.height_m / tank.cells_y);
+}
+
+void validate_layout(const SwimSettings& settings) {
+  const TankSpec& t = settings.tank;
+  struct Shape {
+    std::string name;
+    std::vector<Vec2> polygon;  ///< closed outline
+    std::vector<Vec2> points;   ///< every point that must lie inside the tank
+  };
+  std::vector<Shape> shapes;
+  for (std::size_t k = 0; k < settings.school.size(); ++k) {
+    const Jellyfish j(settings.school[k]);
+    Shape s{"jellyfish " + std::to_string(k + 1), jellyfish_outline(j), j.body().points.position};
+    shapes.push_back(std::move(s));
+  }
+  for (const ObstacleSpec& o : settings.obstacles) {
+    validate(o);
+    std::vector<Vec2> outline = obstacle_outline(o);
+    shapes.push_back({o.name, outline, outline});
+  }
+  const double margin = 0.5 * std::min(t.width_m / t.cells_x, t.height_m / t.cells_y);
+  for (const Shape& s : shapes)
+    for (Vec2 p : s.points)
+      if (!(p.x >= margin && p.x <= t.width_m - margin && p.y >= margin && p.y <= t.height_m - margin))
+        throw std::invalid_argument(s.name + " reaches outside the tank: point (" + std::to_string(p.x) + ", " +
+                                    std::to_string(p.y) + ") m is not inside [" + std::to_string(margin) + ", " +
+                                    std::to_string(t.width_m - margin) + "] x [" + std::to_string(margin) + ", " +
+                                    std::to_string(t.height_m - margin) + "] m (half a cell from the walls)");
+  for (std::size_t a = 0; a < shapes.size(); ++a)
+    for (std::size_t b = a + 1; b < shapes.size(); ++b)
+      if (polygons_overlap(shapes[a].polygon, shapes[b].polygon))
+        throw std::invalid_argument(shapes[a].name + " and " + shapes[b].name + " overlap; move them apart");
 }
 
 SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(settings) {
@@ -34,14 +99,35 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
   fs.diffusion_tolerance = std::min(fs.diffusion_tolerance, t.pressure_tolerance);
   fs.safety_factor = 1.0;  // the coupling chooses Δt; the Eulerian solver only guards it
   fluid_ = fluid::make_fluid_solver(t.solver, grid, fs);
-  jellyfish_ = std::make_unique<Jellyfish>(settings_.jellyfish);
-  Jellyfish* jelly = jellyfish_.get();
-  coupling_ = std::make_unique<coupling::ImmersedBoundary>(
-      *fluid_, jellyfish_->body(), settings_.coupling, [jelly](double time, elastic::Body&) { jelly->actuate(time); });
-  strain_reference_ = jellyfish_->body().linear.rest_length;
-  for (std::size_t k = 0; k < jellyfish_->layout().muscle_springs.size(); ++k)
-    strain_reference_[static_cast<std::size_t>(jellyfish_->layout().muscle_springs[k])] =
-        jellyfish_->layout().muscle_uncontracted_m[k];
+  if (t.current_m_per_s.x != 0.0 || t.current_m_per_s.y != 0.0) {
+    fluid_->state().velocity.u.fill(t.current_m_per_s.x);
+    fluid_->state().velocity.v.fill(t.current_m_per_s.y);
+    fluid_->apply_boundaries();
+  }
+
+  for (const JellyfishSpec& spec : settings_.school) {
+    school_.push_back(std::make_unique<Jellyfish>(spec));
+    jellyfish_offset_.push_back(static_cast<int>(body_.points.size()));
+    jellyfish_spring_offset_.push_back(static_cast<int>(body_.linear.size()));
+    jellyfish_joint_offset_.push_back(static_cast<int>(body_.angular.size()));
+    append_body(school_.back()->body(), body_);
+  }
+  strain_reference_ = body_.linear.rest_length;
+  for (std::size_t j = 0; j < school_.size(); ++j) {
+    const JellyfishLayout& layout = school_[j]->layout();
+    for (std::size_t k = 0; k < layout.muscle_springs.size(); ++k)
+      strain_reference_[static_cast<std::size_t>(jellyfish_spring_offset_[j] + layout.muscle_springs[k])] =
+          layout.muscle_uncontracted_m[k];
+  }
+  const double spacing = peskin_spacing(t);
+  for (const ObstacleSpec& o : settings_.obstacles) {
+    validate(o);
+    obstacles_.push_back(add_obstacle(o, spacing, body_));
+  }
+  strain_reference_.resize(body_.linear.size(), 0.0);  // tethers have zero rest length: no strain
+
+  coupling_ = std::make_unique<coupling::ImmersedBoundary>(*fluid_, body_, settings_.coupling,
+                                                           [this](double time, elastic::Body&) { actuate(time); });
   if (t.tracers_per_side > 0) {
     const double margin_x = 0.5 * t.width_m / t.tracers_per_side, margin_y = 0.5 * t.height_m / t.tracers_per_side;
     tracers_ = fluid::Tracers::lattice({margin_x, margin_y}, {t.width_m - margin_x, t.height_m - margin_y},
@@ -49,12 +135,83 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
   }
 }
 
+SwimSimulation::~SwimSimulation() = default;
+
+const Jellyfish& SwimSimulation::jellyfish(std::size_t i) const {
+  if (i >= school_.size()) throw std::out_of_range("no jellyfish " + std::to_string(i) + " in the scene");
+  return *school_[i];
+}
+
+void SwimSimulation::actuate(double t) {
+  // Each jellyfish sets its muscles (and steering joints) on its own body; the coupled body takes
+  // over the rest lengths, rest angles and spring constants.
+  for (std::size_t j = 0; j < school_.size(); ++j) {
+    school_[j]->actuate(t);
+    const elastic::Body& part = school_[j]->body();
+    const auto ls = static_cast<std::size_t>(jellyfish_spring_offset_[j]);
+    const auto as = static_cast<std::size_t>(jellyfish_joint_offset_[j]);
+    std::copy(part.linear.rest_length.begin(), part.linear.rest_length.end(), body_.linear.rest_length.begin() + static_cast<std::ptrdiff_t>(ls));
+    std::copy(part.linear.stiffness.begin(), part.linear.stiffness.end(), body_.linear.stiffness.begin() + static_cast<std::ptrdiff_t>(ls));
+    std::copy(part.angular.rest_angle.begin(), part.angular.rest_angle.end(), body_.angular.rest_angle.begin() + static_cast<std::ptrdiff_t>(as));
+    std::copy(part.angular.stiffness.begin(), part.angular.stiffness.end(), body_.angular.stiffness.begin() + static_cast<std::ptrdiff_t>(as));
+  }
+}
+
+void SwimSimulation::copy_back_to_jellyfish() {
+  for (std::size_t j = 0; j < school_.size(); ++j) {
+    elastic::Body& part = school_[j]->body();
+    const auto first = static_cast<std::ptrdiff_t>(jellyfish_offset_[j]);
+    const auto count = static_cast<std::ptrdiff_t>(part.points.size());
+    std::copy(body_.points.position.begin() + first, body_.points.position.begin() + first + count, part.points.position.begin());
+    std::copy(body_.points.velocity.begin() + first, body_.points.velocity.begin() + first + count, part.points.velocity.begin());
+  }
+}
+
+std::vector<Vec2> SwimSimulation::obstacle_outline(std::size_t i) const {
+  std::vector<Vec2> p;
+  for (int m : obstacles_.at(i).markers) p.push_back(body_.points.position[static_cast<std::size_t>(m)]);
+  return p;
+}
+
+Vec2 SwimSimulation::obstacle_force(std::size_t i) const { return obstacle_fluid_force(obstacles_.at(i), body_); }
+
 std::string SwimSimulation::check() const {
-  std::string problem = coupling::check_stability(fluid_->state(), jellyfish_->body(), settings_.limits, &strain_reference_);
+  std::string problem = coupling::check_stability(fluid_->state(), body_, settings_.limits, &strain_reference_);
   if (!problem.empty()) return problem;
-  if (polyline_self_intersects(jellyfish_->umbrella_points()))
-    return "structural instability: the umbrella crossed itself (mesh inversion)";
+  for (std::size_t j = 0; j < school_.size(); ++j)
+    if (polyline_self_intersects(school_[j]->umbrella_points()))
+      return "structural instability: the umbrella of jellyfish " + std::to_string(j + 1) +
+             " crossed itself (mesh inversion)";
+  const double limit = settings_.obstacle_max_displacement_m > 0 ? settings_.obstacle_max_displacement_m
+                                                                 : 2.0 * peskin_spacing(settings_.tank);
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+    const ObstacleParts& parts = obstacles_[o];
+    for (std::size_t k = 0; k < parts.markers.size(); ++k) {
+      const Vec2 x = body_.points.position[static_cast<std::size_t>(parts.markers[k])];
+      const double stretch = norm(x - body_.points.position[static_cast<std::size_t>(parts.targets[k])]);
+      if (!(stretch <= limit))
+        return "structural instability: " + settings_.obstacles[o].name + " was pushed " + format_length(stretch) +
+               " off its place near (" + std::to_string(x.x) + ", " + std::to_string(x.y) +
+               ") m, more than " + format_length(limit) + " (raise its stiffness)";
+    }
+  }
   return {};
+}
+
+SwimStep SwimSimulation::step(double max_dt_s) {
+  SwimStep s;
+  s.dt_s = std::min(coupling_->next_time_step(), max_dt_s);
+  if (!(s.dt_s >= settings_.coupling.min_time_step_s)) {
+    s.failure = "numerical instability: the stable time step fell to " + std::to_string(s.dt_s) +
+                " s, below min_time_step" + when(time_s(), coupling_->steps());
+    return s;
+  }
+  const coupling::CoupledStepReport r = coupling_->step(s.dt_s);
+  copy_back_to_jellyfish();
+  s.krylov_iterations = r.krylov.iterations;
+  if (!tracers_.positions().empty()) tracers_.advect(fluid_->state().velocity, settings_.tank.boundaries, s.dt_s);
+  if (std::string problem = check(); !problem.empty()) s.failure = problem + when(time_s(), coupling_->steps());
+  return s;
 }
 
 SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::ProgressCallback& progress) {
@@ -80,24 +237,19 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   for (long f = 1; f <= frames; ++f) {
     const double frame_time = std::min(duration, f * frame_dt);
     while (time_s() < frame_time - 1e-12 * std::max(1.0, frame_time)) {
-      double dt = coupling_->next_time_step();
+      // Land on the frame time without a sliver step before it.
       const double remaining = frame_time - time_s();
-      if (dt >= remaining) dt = remaining;
-      else if (dt > 0.5 * remaining) dt = 0.5 * remaining;  // avoid a sliver step before the frame
-      if (!(dt >= settings_.coupling.min_time_step_s)) {
-        stats.failure = "numerical instability: the stable time step fell to " + std::to_string(dt) +
-                        " s, below min_time_step" + when(time_s(), coupling_->steps());
-        return finish();
+      const double natural = coupling_->next_time_step();
+      const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
+      const SwimStep s = step(limit);
+      if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
+        stats.smallest_step_s = std::min(stats.smallest_step_s, s.dt_s);
+        stats.largest_step_s = std::max(stats.largest_step_s, s.dt_s);
+        stats.krylov_iterations += s.krylov_iterations;
       }
-      const coupling::CoupledStepReport r = coupling_->step(dt);
-      stats.smallest_step_s = std::min(stats.smallest_step_s, dt);
-      stats.largest_step_s = std::max(stats.largest_step_s, dt);
-      stats.krylov_iterations += r.krylov.iterations;
-      if (!tracers_.positions().empty())
-        tracers_.advect(fluid_->state().velocity, settings_.tank.boundaries, dt);
-      if (std::string problem = check(); !problem.empty()) {
-        stats.failure = problem + when(time_s(), coupling_->steps());
-        if (on_frame) on_frame(*this);  // keep the state that failed
+      if (!s.failure.empty()) {
+        stats.failure = s.failure;
+        if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) on_frame(*this);  // keep the state that failed
         return finish();
       }
       if (progress) progress(time_s(), duration, coupling_->steps());
@@ -110,6 +262,47 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
     }
   }
   return finish();
+}
+
+// ---- Live edits ----
+
+void SwimSimulation::set_frequency(std::size_t j, double hz) { school_.at(j)->set_frequency(hz, time_s()); }
+void SwimSimulation::set_gamma(std::size_t j, double gamma) { school_.at(j)->set_gamma(gamma); }
+void SwimSimulation::set_stiffness_scale(std::size_t j, double scale) { school_.at(j)->set_stiffness_scale(scale); }
+void SwimSimulation::set_steer_target(std::size_t j, std::optional<Vec2> target_m) {
+  school_.at(j)->set_steer_target(target_m);
+}
+void SwimSimulation::set_viscosity(double nu_m2_per_s) { fluid_->set_viscosity(nu_m2_per_s); }
+
+void SwimSimulation::stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_m) {
+  if (!(radius_m > 0)) throw std::invalid_argument("stir radius must be > 0");
+  auto splat = [&](fluid::Field& f, double amount) {
+    for (int j = 0; j < f.count_y(); ++j)
+      for (int i = 0; i < f.count_x(); ++i) {
+        const double r2 = norm_squared(f.position(i, j) - at_m) / (radius_m * radius_m);
+        if (r2 < 9.0) f(i, j) += amount * std::exp(-r2);
+      }
+  };
+  splat(fluid_->state().velocity.u, delta_velocity_m_per_s.x);
+  splat(fluid_->state().velocity.v, delta_velocity_m_per_s.y);
+  fluid_->apply_boundaries();
+}
+
+void SwimSimulation::move_jellyfish(std::size_t j, Vec2 delta_m) {
+  elastic::Body& part = school_.at(j)->body();
+  for (std::size_t p = 0; p < part.points.size(); ++p) {
+    part.points.position[p] += delta_m;
+    body_.points.position[static_cast<std::size_t>(jellyfish_offset_[j]) + p] += delta_m;
+  }
+}
+
+void SwimSimulation::move_obstacle(std::size_t o, Vec2 delta_m) {
+  ObstacleParts& parts = obstacles_.at(o);
+  *parts.shift += delta_m;
+  for (std::size_t k = 0; k < parts.markers.size(); ++k) {
+    body_.points.position[static_cast<std::size_t>(parts.markers[k])] += delta_m;
+    body_.points.position[static_cast<std::size_t>(parts.targets[k])] += delta_m;
+  }
 }
 
 }  // namespace jellysim::jellyfish

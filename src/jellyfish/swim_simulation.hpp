@@ -1,14 +1,20 @@
 #pragma once
-// A jellyfish slice swimming in a grid fluid through the immersed boundary method (thesis §7.1,
-// §8.1.4–8.2.1): the tank (fluid grid, boundaries, tracers), the jellyfish, the coupling and the
-// stability checks, stepped to each output frame. Knows nothing of files.
+// Jellyfish swimming in a grid fluid through the immersed boundary method (thesis §7.1,
+// §8.1.4–8.2.1), and beyond the thesis a tank with more than one thing in it: several jellyfish,
+// rigid obstacles (fixed or on a prescribed path) and a background current. All bodies are
+// markers of one coupled spring body, so they push water at each other through the one fluid.
+// The simulation steps to each output frame, or one step at a time for an interactive viewer,
+// and accepts live edits (frequency, contraction, stiffness, viscosity, dragging, stirring).
+// Knows nothing of files or pixels.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "coupling/immersed_boundary.hpp"
 #include "fluid/tracers.hpp"
 #include "jellyfish/jellyfish.hpp"
+#include "jellyfish/obstacle.hpp"
 #include "sim/time_stepping.hpp"
 
 namespace jellysim::jellyfish {
@@ -25,15 +31,21 @@ struct TankSpec {
   double density_kg_per_m3 = 1000.0;
   fluid::Boundaries boundaries = fluid::Boundaries::all(fluid::BoundaryType::free_slip);
   int tracers_per_side = 0;  ///< marker particles on a lattice over the whole tank (Figs 8.11/8.12)
+  Vec2 current_m_per_s{};    ///< uniform background flow at t = 0 (with inflow/outflow or periodic sides)
 };
 
 struct SwimSettings {
   TankSpec tank;
-  JellyfishSpec jellyfish;
+  std::vector<JellyfishSpec> school;     ///< every jellyfish in the tank (may be empty)
+  std::vector<ObstacleSpec> obstacles;   ///< rigid obstacles
+  double obstacle_max_displacement_m = 0.0;  ///< tether stretch that stops the run; 0: one cell
   coupling::CouplingSettings coupling;
   coupling::StabilityLimits limits;
   double duration_s = 10.0;
   double frame_interval_s = 1.0 / 30.0;
+
+  /// The first jellyfish (the one metrics.csv describes); throws when there is none.
+  const JellyfishSpec& jellyfish() const;
 };
 
 struct SwimRunStats {
@@ -46,32 +58,85 @@ struct SwimRunStats {
   std::string failure;  ///< "numerical instability: …" or "structural instability: …" with when/where
 };
 
+/// One coupled step taken by SwimSimulation::step.
+struct SwimStep {
+  double dt_s = 0.0;
+  int krylov_iterations = 0;
+  std::string failure;  ///< non-empty: the run cannot go on (the state that failed is kept)
+};
+
 class SwimSimulation {
  public:
   explicit SwimSimulation(const SwimSettings& settings);
+  ~SwimSimulation();
 
   /// Called at t = 0 and at every frame time; a non-empty return stops the run with that failure.
   using FrameCallback = std::function<std::string(const SwimSimulation&)>;
   SwimRunStats run(const FrameCallback& on_frame, const sim::ProgressCallback& progress = {});
 
+  /// One coupled step of the largest stable size, at most max_dt_s; advects the tracers and checks
+  /// for instability. For interactive use; run() calls it too.
+  SwimStep step(double max_dt_s = INFINITY);
+
   double time_s() const { return coupling_->time_s(); }
+  long steps() const { return coupling_->steps(); }
   const SwimSettings& settings() const { return settings_; }
-  const Jellyfish& jellyfish() const { return *jellyfish_; }
+  std::size_t jellyfish_count() const { return school_.size(); }
+  const Jellyfish& jellyfish(std::size_t i = 0) const;
+  std::size_t obstacle_count() const { return obstacles_.size(); }
+  /// The obstacle's outline markers as they are now (counter-clockwise, closed implicitly).
+  std::vector<Vec2> obstacle_outline(std::size_t i) const;
+  /// Force of the fluid on the obstacle, N per metre of depth (drag and lift).
+  Vec2 obstacle_force(std::size_t i) const;
+  /// Every marker of every body in one spring body (jellyfish first, then obstacles).
+  const elastic::Body& body() const { return body_; }
   const fluid::FlowState& flow() const { return fluid_->state(); }
   const fluid::Tracers& tracers() const { return tracers_; }
   /// The problem that should stop the run now, or "".
   std::string check() const;
 
+  // ---- Live edits (the interactive viewer) ----
+  /// Changes the contraction frequency keeping the current phase continuous.
+  void set_frequency(std::size_t jellyfish, double hz);
+  /// Changes γ, the contracted rest-length fraction (eq. 7.5), in (0, 1].
+  void set_gamma(std::size_t jellyfish, double gamma);
+  /// Scales the stiffness of the umbrella and tentacle springs relative to the spec's (> 0).
+  void set_stiffness_scale(std::size_t jellyfish, double scale);
+  /// Steers the jellyfish toward a point, or stops steering (nullopt).
+  void set_steer_target(std::size_t jellyfish, std::optional<Vec2> target_m);
+  void set_viscosity(double nu_m2_per_s);
+  /// Adds a Gaussian velocity splat Δu·exp(−r²/radius²) to the fluid (stirring with the mouse);
+  /// the next step's projection makes it divergence-free.
+  void stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_m);
+  /// Moves a whole jellyfish (its markers) by delta (dragging with the mouse).
+  void move_jellyfish(std::size_t jellyfish, Vec2 delta_m);
+  /// Moves an obstacle's targets and markers by delta.
+  void move_obstacle(std::size_t obstacle, Vec2 delta_m);
+
  private:
+  void actuate(double t);
+  void copy_back_to_jellyfish();
+
   SwimSettings settings_;
   std::unique_ptr<fluid::FluidSolver> fluid_;
-  std::unique_ptr<Jellyfish> jellyfish_;
+  std::vector<std::unique_ptr<Jellyfish>> school_;
+  std::vector<int> jellyfish_offset_;         ///< first point of each jellyfish in body_
+  std::vector<int> jellyfish_spring_offset_;  ///< first linear spring of each jellyfish in body_
+  std::vector<int> jellyfish_joint_offset_;   ///< first angular spring of each jellyfish in body_
+  std::vector<ObstacleParts> obstacles_;
+  std::vector<Vec2> obstacle_shift_;          ///< dragging offsets added to the prescribed paths
+  elastic::Body body_;
   std::unique_ptr<coupling::ImmersedBoundary> coupling_;
   fluid::Tracers tracers_;
   std::vector<double> strain_reference_;  ///< rest lengths at build time (muscles uncontracted)
+  SwimRunStats totals_;
 };
 
 /// The largest marker spacing Peskin's rule allows on a tank: half the smaller cell size.
 double peskin_spacing(const TankSpec& tank);
+
+/// Checks that bodies lie inside the tank and do not overlap one another; throws
+/// std::invalid_argument naming the bodies ("jellyfish 2", "objects[1] (circle)").
+void validate_layout(const SwimSettings& settings);
 
 }  // namespace jellysim::jellyfish

@@ -31,16 +31,16 @@ double mirror_mismatch(const std::vector<Vec2>& u, double axis_x) {
 // the drift saturates at 5–100 % of the distance after 5–7 cycles; docs/jellyfish.md.)
 TEST(SlowSwim, DefaultJellyfishSwimsAlongItsAxis) {
   const jellyfish::SwimSettings s = default_scene();
-  ASSERT_NEAR(s.duration_s * s.jellyfish.frequency_hz, 10.0, 1e-9);
+  ASSERT_NEAR(s.duration_s * s.jellyfish().frequency_hz, 10.0, 1e-9);
   const SwimRecording rec = run_swim(s, {}, nullptr, {});
   ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
   const auto& last = rec.metrics.back();
-  EXPECT_GT(last.position, s.jellyfish.height_m) << "distance " << last.position;
+  EXPECT_GT(last.position, s.jellyfish().height_m) << "distance " << last.position;
   EXPECT_LT(std::abs(last.lateral), std::abs(last.position)) << "lateral " << last.lateral;
   std::vector<double> volume;
   for (const auto& r : rec.metrics) volume.push_back(r.volume);
   const double resolution = 1.0 / s.duration_s;
-  EXPECT_NEAR(jellyfish::dominant_frequency(volume, s.frame_interval_s), s.jellyfish.frequency_hz, resolution);
+  EXPECT_NEAR(jellyfish::dominant_frequency(volume, s.frame_interval_s), s.jellyfish().frequency_hz, resolution);
 }
 
 // A symmetric bell in a symmetric tank stays mirror-symmetric while asymmetry is at solver-tolerance
@@ -50,15 +50,15 @@ TEST(SlowSwim, DefaultJellyfishSwimsAlongItsAxis) {
 // asymmetry (docs/jellyfish.md).
 TEST(Swim, SymmetricBellStaysSymmetricForTwoCycles) {
   jellyfish::SwimSettings s = default_scene();
-  s.duration_s = 2.0 / s.jellyfish.frequency_hz;
-  s.jellyfish.aperture_centre_m.x = 0.5 * s.tank.width_m;
+  s.duration_s = 2.0 / s.jellyfish().frequency_hz;
+  s.school.front().aperture_centre_m.x = 0.5 * s.tank.width_m;
   const SwimRecording rec = run_swim(s, {}, nullptr, {});
   ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
   const double axis_x = 0.5 * s.tank.width_m;
   for (const auto& f : rec.frames) EXPECT_LT(mirror_mismatch(f.umbrella, axis_x), 1e-6) << f.time_s;
   for (const auto& r : rec.metrics) EXPECT_LT(std::abs(r.lateral), 1e-7) << r.t;
   // It contracts in each cycle and re-expands in between.
-  const double period = 1.0 / s.jellyfish.frequency_hz;
+  const double period = 1.0 / s.jellyfish().frequency_hz;
   for (int cycle = 0; cycle < 2; ++cycle) {
     double v_min = 1e9, v_max_after = 0.0, t_min = 0.0;
     for (const auto& r : rec.metrics)

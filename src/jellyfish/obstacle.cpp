@@ -1,0 +1,168 @@
+#include "jellyfish/obstacle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace jellysim::jellyfish {
+
+namespace {
+
+void require(bool ok, const ObstacleSpec& spec, const std::string& field, const std::string& range) {
+  if (!ok) throw std::invalid_argument(spec.name + ": field '" + field + "' is out of range " + range);
+}
+
+bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+bool polygon_self_intersects(const std::vector<Vec2>& p) {
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j + 1 == n) continue;  // the closing edge meets the first one at a vertex
+      if (segments_cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+bool ObstacleMotion::moving() const {
+  return velocity_m_per_s.x != 0 || velocity_m_per_s.y != 0 ||
+         (frequency_hz > 0 && (amplitude_m.x != 0 || amplitude_m.y != 0));
+}
+
+Vec2 ObstacleMotion::offset(double t) const {
+  return t * velocity_m_per_s + std::sin(2.0 * std::numbers::pi * frequency_hz * t) * amplitude_m;
+}
+
+Vec2 ObstacleMotion::velocity(double t) const {
+  const double w = 2.0 * std::numbers::pi * frequency_hz;
+  return velocity_m_per_s + (w * std::cos(w * t)) * amplitude_m;
+}
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * a;
+}
+
+bool point_in_polygon(Vec2 q, const std::vector<Vec2>& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x)
+      inside = !inside;
+  }
+  return inside;
+}
+
+bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j)
+      if (segments_cross(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()])) return true;
+  return (!a.empty() && point_in_polygon(a.front(), b)) || (!b.empty() && point_in_polygon(b.front(), a));
+}
+
+void validate(const ObstacleSpec& s) {
+  require(std::isfinite(s.centre_m.x) && std::isfinite(s.centre_m.y), s, "centre", "finite numbers");
+  switch (s.shape) {
+    case ObstacleShape::circle: require(s.radius_m > 0, s, "radius", "(0, inf) m"); break;
+    case ObstacleShape::box: require(s.size_m.x > 0 && s.size_m.y > 0, s, "size", "(0, inf) m each"); break;
+    case ObstacleShape::polygon: {
+      require(s.vertices_m.size() >= 3, s, "points", "at least 3 vertices");
+      if (polygon_self_intersects(s.vertices_m))
+        throw std::invalid_argument(s.name + ": field 'points' describes a self-intersecting polygon");
+      require(std::abs(polygon_area(s.vertices_m)) > 0, s, "points", "a polygon of non-zero area");
+      break;
+    }
+  }
+  require(s.tether_stiffness_n_per_m > 0, s, "stiffness", "(0, inf) N/m");
+  require(s.motion.frequency_hz >= 0, s, "frequency", "[0, inf) Hz");
+}
+
+std::vector<Vec2> obstacle_outline(const ObstacleSpec& s) {
+  std::vector<Vec2> p;
+  switch (s.shape) {
+    case ObstacleShape::circle: {
+      const int n = 256;
+      for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / n;
+        p.push_back(s.centre_m + s.radius_m * Vec2{std::cos(a), std::sin(a)});
+      }
+      return p;
+    }
+    case ObstacleShape::box: {
+      const Vec2 h = 0.5 * s.size_m;
+      for (Vec2 c : {Vec2{-h.x, -h.y}, Vec2{h.x, -h.y}, Vec2{h.x, h.y}, Vec2{-h.x, h.y}})
+        p.push_back(s.centre_m + rotated(c, s.angle_rad));
+      return p;
+    }
+    case ObstacleShape::polygon:
+      p = s.vertices_m;
+      if (polygon_area(p) < 0) std::reverse(p.begin(), p.end());
+      return p;
+  }
+  return p;
+}
+
+std::vector<Vec2> obstacle_markers(const ObstacleSpec& s, double max_spacing_m) {
+  if (s.shape == ObstacleShape::circle) {
+    // Evenly around the circle, exactly on it.
+    const int n = std::max(8, static_cast<int>(std::ceil(2.0 * std::numbers::pi * s.radius_m / max_spacing_m)));
+    std::vector<Vec2> p;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / n;
+      p.push_back(s.centre_m + s.radius_m * Vec2{std::cos(a), std::sin(a)});
+    }
+    return p;
+  }
+  // Polygons: every vertex, and evenly spaced points along each edge.
+  const std::vector<Vec2> outline = obstacle_outline(s);
+  std::vector<Vec2> p;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec2 a = outline[i], b = outline[(i + 1) % outline.size()];
+    const int pieces = std::max(1, static_cast<int>(std::ceil(norm(b - a) / max_spacing_m)));
+    for (int k = 0; k < pieces; ++k) p.push_back(a + (static_cast<double>(k) / pieces) * (b - a));
+  }
+  return p;
+}
+
+ObstacleParts add_obstacle(const ObstacleSpec& spec, double max_spacing_m, elastic::Body& body) {
+  ObstacleParts parts;
+  const ObstacleMotion motion = spec.motion;
+  parts.shift = std::make_shared<Vec2>();
+  std::shared_ptr<const Vec2> shift = parts.shift;
+  constexpr double kMarkerMass = 1e-6;  // unused by the coupling: the markers are massless
+  for (Vec2 start : obstacle_markers(spec, max_spacing_m)) {
+    const int marker = body.add_point(start, kMarkerMass);
+    // Every target is prescribed (a fixed obstacle has a path that stays put), so that dragging
+    // can move it through `shift`.
+    const int target = body.add_prescribed_point([start, motion, shift](double t) {
+      return elastic::PrescribedState{start + *shift + motion.offset(t), motion.velocity(t), {}};
+    });
+    body.add_linear_spring(marker, target, spec.tether_stiffness_n_per_m, 0.0);
+    parts.markers.push_back(marker);
+    parts.targets.push_back(target);
+    parts.tethers.push_back(static_cast<int>(body.linear.size()) - 1);
+  }
+  return parts;
+}
+
+Vec2 obstacle_fluid_force(const ObstacleParts& parts, const elastic::Body& body) {
+  // The tether pulls the marker with k (x_target − x_marker); the marker hands that force to the
+  // fluid, so the fluid pushes the obstacle with the opposite: k (x_marker − x_target).
+  Vec2 f{};
+  for (std::size_t k = 0; k < parts.markers.size(); ++k) {
+    const auto s = static_cast<std::size_t>(parts.tethers[k]);
+    const Vec2 stretch = body.points.position[static_cast<std::size_t>(parts.markers[k])] -
+                         body.points.position[static_cast<std::size_t>(parts.targets[k])];
+    f += body.linear.stiffness[s] * stretch;
+  }
+  return f;
+}
+
+}  // namespace jellysim::jellyfish
