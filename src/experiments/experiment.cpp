@@ -29,6 +29,8 @@ Experiment sph_stream_experiment();
 Experiment mosquito_larva_experiment();
 Experiment integrator_cost_experiment();
 Experiment stages_experiment();
+Experiment steering_experiment();
+Experiment obstacle_flow_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
@@ -38,7 +40,8 @@ const std::vector<Experiment>& all_experiments() {
                                                numerical_instability_experiment(), frequency_sweep_experiment(),
                                                fluidless_experiment(), coupling_stability_experiment(), bar_hits_wall_experiment(),
                                                bar_hits_particle_experiment(), sph_stream_experiment(),
-                                               mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment()};
+                                               mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
+                                               steering_experiment(), obstacle_flow_experiment()};
   return list;
 }
 

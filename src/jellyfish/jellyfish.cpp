@@ -229,6 +229,7 @@ void Jellyfish::set_steer_target(std::optional<Vec2> target_m) {
   spec_.steering = target_m.has_value();
   if (target_m) spec_.steer_target_m = *target_m;
   steer_updated_phase_ = -1e300;  // choose a new bias at the next actuation
+  steer_has_heading_ = false;
   if (!target_m) {
     steer_bias_ = 0.0;
     body_.angular.rest_angle = base_rest_angle_;
@@ -247,7 +248,13 @@ void Jellyfish::steer(double t) {
                                  x[static_cast<std::size_t>(layout_.umbrella.back())]);
     const Vec2 to_target = spec_.steer_target_m - aperture;
     const double error = norm(to_target) > 0 ? std::atan2(cross(h, to_target), dot(h, to_target)) : 0.0;
-    steer_bias_ = std::clamp(-spec_.steer_gain * error, -spec_.steer_max_bend_rad, spec_.steer_max_bend_rad);
+    // Proportional–derivative on the heading: the turn rate over the last cycle predicts where the
+    // heading goes next (the wake keeps the bell turning for about a cycle after the bias changes).
+    const double turned = steer_has_heading_ ? std::atan2(cross(steer_last_heading_, h), dot(steer_last_heading_, h)) : 0.0;
+    steer_last_heading_ = h;
+    steer_has_heading_ = true;
+    const double command = spec_.steer_gain * (error - spec_.steer_damping_cycles * turned);
+    steer_bias_ = std::clamp(-command, -spec_.steer_max_bend_rad, spec_.steer_max_bend_rad);
   }
   // Mean contraction of the muscles now, 0 relaxed … 1 fully contracted.
   double contraction = 0.0;
@@ -255,10 +262,13 @@ void Jellyfish::steer(double t) {
   contraction /= std::max<std::size_t>(1, layout_.muscle_springs.size());
   // The umbrella turns clockwise from the left tip to the right one (negative turning angles):
   // bending a side inward makes its joints' rest angles more negative.
+  // The bias is the whole side's extra bend, shared evenly by its joints.
+  const double joints_per_side = std::max(1.0, static_cast<double>(layout_.apex) - 1.0);
+  const double per_joint = std::abs(steer_bias_) * contraction / joints_per_side;
   for (std::size_t a = 0; a < body_.angular.size(); ++a) {
     const int side = joint_side_[a];
     const bool active = (side < 0 && steer_bias_ > 0) || (side > 0 && steer_bias_ < 0);
-    body_.angular.rest_angle[a] = base_rest_angle_[a] - (active ? std::abs(steer_bias_) * contraction : 0.0);
+    body_.angular.rest_angle[a] = base_rest_angle_[a] - (active ? per_joint : 0.0);
   }
 }
 

@@ -53,8 +53,9 @@ struct JellyfishSpec {
   // with the contraction, so that side strokes harder and the jellyfish turns.
   bool steering = false;
   Vec2 steer_target_m{};                  ///< the point to turn toward
-  double steer_gain = 1.0;                ///< rest-angle change per radian of heading error
-  double steer_max_bend_rad = 0.35;       ///< largest rest-angle change of a joint
+  double steer_gain = 1.0;                ///< extra bend of the side per radian of heading error
+  double steer_max_bend_rad = 0.35;       ///< largest extra bend of a side (shared by its joints)
+  double steer_damping_cycles = 1.5;      ///< derivative time: heading change per cycle is weighed by this
 
   int noise_seed = 1;                     ///< the individual's noise seed for rendering (§7.3)
 };
@@ -102,8 +103,8 @@ class Jellyfish {
   /// Scales the umbrella and tentacle spring constants relative to those built from the spec.
   void set_stiffness_scale(double scale);
   void set_steer_target(std::optional<Vec2> target_m);
-  /// The steering bias now: signed rest-angle change (rad) of the steering side's joints at full
-  /// contraction; positive bends the left side (umbrella start) inward.
+  /// The steering bias now: signed extra bend (rad) of the steering side at full contraction,
+  /// shared by its joints; positive bends the left side (umbrella start) inward.
   double steer_bias() const { return steer_bias_; }
 
  private:
@@ -120,6 +121,8 @@ class Jellyfish {
   std::vector<int> joint_side_;               ///< −1 left, +1 right, 0 apex or tentacle
   double steer_bias_ = 0.0;
   double steer_updated_phase_ = -1e300;       ///< cycle in which the bias was last chosen
+  Vec2 steer_last_heading_{};                 ///< heading when the bias was last chosen
+  bool steer_has_heading_ = false;
 };
 
 /// Checks the spec; throws std::invalid_argument naming the field and its allowed range.

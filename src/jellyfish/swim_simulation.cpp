@@ -175,6 +175,24 @@ std::vector<Vec2> SwimSimulation::obstacle_outline(std::size_t i) const {
 
 Vec2 SwimSimulation::obstacle_force(std::size_t i) const { return obstacle_fluid_force(obstacles_.at(i), body_); }
 
+double SwimSimulation::obstacle_leakage(std::size_t i) const {
+  const ObstacleParts& parts = obstacles_.at(i);
+  const fluid::Velocity& u = fluid_->state().velocity;
+  const auto& x = body_.points.position;
+  const auto& v = body_.points.velocity;
+  double crossing = 0.0;
+  for (std::size_t k = 0; k < parts.markers.size(); ++k) {
+    const auto a = static_cast<std::size_t>(parts.markers[k]);
+    const auto b = static_cast<std::size_t>(parts.markers[(k + 1) % parts.markers.size()]);
+    const Vec2 mid = 0.5 * (x[a] + x[b]);
+    const Vec2 wall_velocity = 0.5 * (v[a] + v[b]);
+    const Vec2 normal_times_length{x[b].y - x[a].y, x[a].x - x[b].x};  // outward for a counter-clockwise outline
+    const Vec2 relative = Vec2{u.u.sample(mid), u.v.sample(mid)} - wall_velocity;
+    crossing += std::abs(dot(relative, normal_times_length));
+  }
+  return 0.5 * crossing;
+}
+
 std::string SwimSimulation::check() const {
   std::string problem = coupling::check_stability(fluid_->state(), body_, settings_.limits, &strain_reference_);
   if (!problem.empty()) return problem;

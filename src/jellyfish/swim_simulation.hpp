@@ -88,6 +88,9 @@ class SwimSimulation {
   std::vector<Vec2> obstacle_outline(std::size_t i) const;
   /// Force of the fluid on the obstacle, N per metre of depth (drag and lift).
   Vec2 obstacle_force(std::size_t i) const;
+  /// Volume of fluid crossing the obstacle's outline per second and metre of depth (m²/s),
+  /// relative to the outline's own motion: ½∮|(u − u_outline)·n| ds. Zero for a perfect wall.
+  double obstacle_leakage(std::size_t i) const;
   /// Every marker of every body in one spring body (jellyfish first, then obstacles).
   const elastic::Body& body() const { return body_; }
   const fluid::FlowState& flow() const { return fluid_->state(); }
