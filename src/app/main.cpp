@@ -1,13 +1,18 @@
 // The jellysim command line: thin layer over the library (see docs/cli.md).
 // Exit codes: 0 success, 1 failed run, 2 bad usage or input.
 #include "experiments/experiment.hpp"
+#include "experiments/jellyfish_runs.hpp"
 #include "io/embedded_data.hpp"
 #include "io/errors.hpp"
+
+#include "viewer/viewer.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <optional>
 #include <unistd.h>
@@ -116,6 +121,92 @@ std::string experiment_list() {
   return text;
 }
 
+
+/// Options of `jellysim view` beyond the viewer's own (scene, overrides, script sources).
+struct ViewCommand {
+  std::string scene_path;
+  std::vector<std::string> sets;
+  std::string script_path;
+  std::string inject;
+  std::string field = "vorticity";
+  bool no_png = false, no_mp4 = false;
+  js::viewer::ViewerOptions options;
+};
+
+void add_view_options(CLI::App& cmd, ViewCommand& v) {
+  auto& o = v.options;
+  cmd.add_option("scene", v.scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")->check(CLI::ExistingFile);
+  cmd.add_option("--set", v.sets, "Override a scene parameter: --set key=value (as for `simulate`). Repeatable.")
+      ->type_name("KEY=VALUE");
+  cmd.add_option("--width", o.width_px, "Window width in pixels, [320, 8192]")->capture_default_str()->check(CLI::Range(320, 8192));
+  cmd.add_option("--height", o.height_px, "Window height in pixels, [240, 8192]")->capture_default_str()->check(CLI::Range(240, 8192));
+  cmd.add_option("--fps", o.target_fps, "Frame rate to pace to, [0, 240]; 0: as fast as possible")
+      ->capture_default_str()->check(CLI::Range(0.0, 240.0));
+  cmd.add_option("--speed", o.speed, "Simulated seconds wanted per wall second, (0, 10]")
+      ->capture_default_str()->check(CLI::Range(1e-6, 10.0));
+  cmd.add_option("--min-fps", o.min_fps, "Lowest frame rate the simulation may slow the viewer to while keeping up, "
+                                         "[1, 240]")->capture_default_str()->check(CLI::Range(1.0, 240.0));
+  cmd.add_option("--3d-scale", o.render_scale, "Resolution of the 3D panel relative to the window, (0, 1]")
+      ->capture_default_str()->check(CLI::Range(0.05, 1.0));
+  cmd.add_option("--frames", o.frames, "Quit after this many frames (0: when the window is closed)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_flag("--paused", o.start_paused, "Start paused (space runs, s steps)");
+  cmd.add_option("--field", v.field, "Fluid quantity shown: vorticity or speed")
+      ->capture_default_str()->check(CLI::IsMember({"vorticity", "speed"}));
+  cmd.add_option("--script", v.script_path, "File of timed input events (frame, event; see docs/viewer.md)")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--inject", v.inject, "Timed input events inline, ';'-separated, e.g. \"10 pause; 20 drag 200 300 260 300\"");
+  cmd.add_option("--screenshot", o.screenshot, "Save the last frame as this PNG at exit")->type_name("FILE");
+  cmd.add_option("--record", o.record_dir, "Record every frame into DIR: frame_NNNNN.png and view.mp4")->type_name("DIR");
+  cmd.add_flag("--no-png", v.no_png, "With --record: no PNG per frame");
+  cmd.add_flag("--no-mp4", v.no_mp4, "With --record: no MP4");
+  cmd.add_option("--stats", o.stats, "Write JSON at exit: fps, sim_rate, frames, steps, the state and a timeline of the "
+                                     "scripted events")->type_name("FILE");
+  cmd.add_flag("--vsync", o.vsync, "Wait for the display's vertical sync");
+  cmd.add_flag("--profile", o.profile, "Finish OpenGL work after each stage so --stats' ms_per_frame is exact (slower)");
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw js::InputError("--script: cannot read " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Loads the scene like `simulate` does (built-in jellyfish scene, scene file, --set) and runs the viewer.
+int run_view(ViewCommand& v) {
+  const auto& e = js::experiments::find_experiment("jellyfish");
+  js::io::Config config = js::experiments::default_config(e);
+  std::string name = "built-in jellyfish";
+  if (!v.scene_path.empty()) {
+    const js::io::Config scene = js::io::Config::load(v.scene_path);
+    if (scene.has("scene") && scene.string("scene") != "jellyfish") {
+      throw js::InputError(v.scene_path + ": `view` shows jellyfish scenes (scene = \"jellyfish\"), not '" +
+                           scene.string("scene") + "'");
+    }
+    config.merge(scene);
+    name = v.scene_path;
+  }
+  for (const std::string& s : v.sets) config.set(s);
+  const js::jellyfish::SwimSettings settings = js::experiments::read_swim_settings(config);
+  auto& o = v.options;
+  o.scene_name = name;
+  o.field = v.field == "speed" ? js::viewer::FieldShown::speed : js::viewer::FieldShown::vorticity;
+  o.record_png = !v.no_png;
+  o.record_mp4 = !v.no_mp4;
+  o.geometry = js::viewer::interactive_geometry(js::geometry::NoiseSettings{});
+  if (!v.script_path.empty()) {
+    o.script_text = read_text_file(v.script_path);
+    o.script_source = v.script_path;
+  }
+  if (!v.inject.empty()) {
+    o.script_text += (o.script_text.empty() ? "" : "\n") + v.inject;
+    o.script_source = v.script_path.empty() ? "--inject" : "--script/--inject";
+  }
+  return js::viewer::run_viewer(settings, o);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -161,6 +252,16 @@ int main(int argc, char** argv) {
   exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
   exp->add_option("--re", re, "Reynolds number (driven-cavity)");
   exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
+  int threads = 0;
+  exp->add_option("--threads", threads, "Threads for the SPH experiments (run.threads; default: one per core)")
+      ->check(CLI::Range(1, 64));
+
+  ViewCommand view_cmd;
+  auto* view = app.add_subcommand(
+      "view", "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, "
+              "drag jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display "
+              "(or xvfb-run -a)");
+  add_view_options(*view, view_cmd);
 
   std::string show_name;
   auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
@@ -176,6 +277,7 @@ int main(int argc, char** argv) {
   try {
     if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
     if (simulate->parsed()) return run_scene(sim_scene_path, sim_opts, "jellyfish");
+    if (view->parsed()) return run_view(view_cmd);
     if (sweep->parsed()) {
       if (!sweep_frequencies.empty()) {
         std::string list;
@@ -191,6 +293,7 @@ int main(int argc, char** argv) {
       for (auto [key, value] : {std::pair{"solver", solver}, {"re", re}, {"grid", grid}}) {
         if (!value.empty()) exp_opts.shorthands.emplace_back(key, value);
       }
+      if (threads > 0) exp_opts.shorthands.emplace_back("run.threads", std::to_string(threads));
       return run_experiment(js::experiments::find_experiment(exp_name), std::nullopt, exp_opts);
     }
     return list_definitions(show_name);

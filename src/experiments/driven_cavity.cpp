@@ -21,7 +21,7 @@ CavityScene read_cavity_scene(const io::Config& c) {
   s.cavity.solver = c.choice("solver", {"eulerian", "semi-lagrangian"});
   s.cavity.reynolds = c.number("re", io::Range{0.0, 1e5, true, false});
   s.cavity.cells = static_cast<int>(c.integer("grid", 4, 1024));
-  s.cavity.pressure_solver = c.choice("cavity.pressure_solver", {"sor", "multigrid"});
+  s.cavity.pressure_solver = c.choice("cavity.pressure_solver", {"sor", "multigrid", "direct", "fft"});
   s.cavity.pressure_tolerance = c.number("cavity.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
   s.cavity.time_step_s = c.number("cavity.time_step", io::Range::non_negative());
   s.cavity.safety_factor = c.number("cavity.safety_factor", io::Range{0.0, 1.0, true, false});

@@ -10,7 +10,7 @@ namespace jellysim::experiments {
 namespace {
 
 const std::vector<std::string> kFluidSolvers = {"eulerian", "semi-lagrangian"};
-const std::vector<std::string> kPressureSolvers = {"sor", "multigrid"};
+const std::vector<std::string> kPressureSolvers = {"sor", "multigrid", "direct", "fft"};
 
 fluid::TaylorGreen read_flow(const io::Config& c) {
   return {c.number("flow.length", io::Range::positive()), c.number("flow.speed", io::Range::positive()),

@@ -244,7 +244,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.cells_x = static_cast<int>(cells[0]);
   t.cells_y = static_cast<int>(cells[1]);
   t.solver = c.choice("tank.solver", {"semi-lagrangian", "eulerian"});
-  t.pressure_solver = c.choice("tank.pressure_solver", {"multigrid", "sor"});
+  t.pressure_solver = c.choice("tank.pressure_solver", {"multigrid", "sor", "direct", "fft"});
   t.pressure_tolerance = c.number("tank.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
   t.viscosity_m2_per_s = c.number("tank.viscosity", io::Range::non_negative());
   t.density_kg_per_m3 = c.number("tank.density", io::Range::positive());

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "fluid/double2.hpp"
+#include "fluid/direct_poisson.hpp"
+#include "fluid/fft_poisson.hpp"
 #include "fluid/multigrid.hpp"
 #include "fluid/sor.hpp"
 
@@ -195,8 +197,10 @@ std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
                                                      const PressureSolverSettings& settings) {
   if (name == "sor") return std::make_unique<SorSolver>(settings);
   if (name == "multigrid") return std::make_unique<MultigridSolver>(settings);
+  if (name == "direct") return std::make_unique<DirectPoissonSolver>();
+  if (name == "fft") return std::make_unique<FftPoissonSolver>();
   throw std::invalid_argument("unknown pressure solver '" + std::string(name) +
-                              "' (expected sor or multigrid)");
+                              "' (expected sor, multigrid, direct or fft)");
 }
 
 int conjugate_gradient_poisson(const PoissonOperator& op, std::span<const double> b,

@@ -93,7 +93,7 @@ class PressureSolver {
                                     std::span<double> p) = 0;
 };
 
-/// "sor" or "multigrid"; throws std::invalid_argument for other names.
+/// "sor", "multigrid", "direct" or "fft"; throws std::invalid_argument for other names.
 std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
                                                      const PressureSolverSettings& settings = {});
 

@@ -197,7 +197,7 @@ TEST(Cli, SolverCostTablesEveryCombination) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string csv = read_file(dir / "solver_cost.csv");
   EXPECT_EQ(csv.substr(0, 29), "solver,pressure_solver,cells,");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2 * 2);  // solvers x pressure solvers x grids
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 3 * 2);  // solvers x pressure solvers (sor, multigrid, fft) x grids
   EXPECT_NE(csv.find("semi-lagrangian,multigrid,32,"), std::string::npos);
   const Result bad = run_cli("experiment solver-cost --quiet --set 'study.pressure_solvers=[\"jacobi\"]' --out " +
                               dir.string() + "_bad");

@@ -1,0 +1,110 @@
+#include "viewer/gl.hpp"
+
+#include <cstring>
+
+#include "io/errors.hpp"
+
+namespace jellysim::viewer::gl {
+
+namespace {
+
+GLuint compile(GLenum kind, const char* source) {
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw RunError(std::string("viewer: OpenGL shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+GLuint make_program(const char* vertex_source, const char* fragment_source) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_source);
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_source);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw RunError(std::string("viewer: OpenGL program does not link: ") + log);
+  }
+  return program;
+}
+
+Texture::Texture() { glGenTextures(1, &id_); }
+Texture::~Texture() { glDeleteTextures(1, &id_); }
+
+void Texture::upload(int width, int height, const std::vector<std::uint8_t>& rgba) {
+  glBindTexture(GL_TEXTURE_2D, id_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+}
+
+RenderTarget::~RenderTarget() { release(); }
+
+void RenderTarget::release() {
+  if (framebuffer_) glDeleteFramebuffers(1, &framebuffer_);
+  if (colour_) glDeleteTextures(1, &colour_);
+  if (depth_) glDeleteRenderbuffers(1, &depth_);
+  framebuffer_ = colour_ = depth_ = 0;
+}
+
+void RenderTarget::bind(int width, int height) {
+  if (width != width_ || height != height_ || !framebuffer_) {
+    release();
+    width_ = width;
+    height_ = height;
+    glGenTextures(1, &colour_);
+    glBindTexture(GL_TEXTURE_2D, colour_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glGenRenderbuffers(1, &depth_);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glGenFramebuffers(1, &framebuffer_);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw RunError("viewer: the OpenGL framebuffer for the 3D panel is incomplete");
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glViewport(0, 0, width_, height_);
+}
+
+std::vector<std::uint8_t> read_screen_rgb(int width, int height) {
+  std::vector<std::uint8_t> bottom_up(static_cast<std::size_t>(width) * height * 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bottom_up.data());
+  std::vector<std::uint8_t> top_down(bottom_up.size());
+  const std::size_t row = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y) {
+    std::memcpy(top_down.data() + static_cast<std::size_t>(y) * row,
+                bottom_up.data() + static_cast<std::size_t>(height - 1 - y) * row, row);
+  }
+  return top_down;
+}
+
+}  // namespace jellysim::viewer::gl

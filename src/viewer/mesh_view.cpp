@@ -1,0 +1,200 @@
+#include "viewer/mesh_view.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace jellysim::viewer {
+
+namespace {
+
+using geometry::Vec3;
+using Mat4 = std::array<float, 16>;  // column-major
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 view_projection;
+out vec3 world_position;
+out vec3 world_normal;
+void main() {
+  world_position = position;
+  world_normal = normal;
+  gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
+// Three-term lighting, two-sided, with a rim term for the glassy look of the translucent umbrella.
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec3 world_position;
+in vec3 world_normal;
+uniform vec3 eye;
+uniform vec4 colour;
+out vec4 fragment;
+void main() {
+  vec3 n = normalize(world_normal);
+  vec3 v = normalize(eye - world_position);
+  if (dot(n, v) < 0.0) n = -n;
+  vec3 l = normalize(vec3(0.2, 1.0, 0.6));
+  vec3 h = normalize(l + v);
+  float ambient = 0.30;
+  float diffuse = max(dot(n, l), 0.0);
+  float specular = pow(max(dot(n, h), 0.0), 40.0) * 0.45;
+  float rim = pow(1.0 - max(dot(n, v), 0.0), 2.0) * 0.5;
+  vec3 c = colour.rgb * (ambient + 0.8 * diffuse) + vec3(specular + rim * 0.4);
+  fragment = vec4(c, clamp(colour.a + rim, 0.0, 1.0));
+}
+)";
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c) {
+    for (int row = 0; row < 4; ++row) {
+      float s = 0.0f;
+      for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[c * 4 + k];
+      r[c * 4 + row] = s;
+    }
+  }
+  return r;
+}
+
+Mat4 perspective(double fov_y_rad, double aspect, double near, double far) {
+  const double f = 1.0 / std::tan(fov_y_rad / 2.0);
+  Mat4 m{};
+  m[0] = static_cast<float>(f / aspect);
+  m[5] = static_cast<float>(f);
+  m[10] = static_cast<float>((far + near) / (near - far));
+  m[11] = -1.0f;
+  m[14] = static_cast<float>(2.0 * far * near / (near - far));
+  return m;
+}
+
+Mat4 look_at(Vec3 eye, Vec3 target, Vec3 up) {
+  const Vec3 f = geometry::normalized(target - eye);
+  const Vec3 s = geometry::normalized(geometry::cross(f, up));
+  const Vec3 u = geometry::cross(s, f);
+  Mat4 m{};
+  m[0] = static_cast<float>(s.x), m[4] = static_cast<float>(s.y), m[8] = static_cast<float>(s.z);
+  m[1] = static_cast<float>(u.x), m[5] = static_cast<float>(u.y), m[9] = static_cast<float>(u.z);
+  m[2] = static_cast<float>(-f.x), m[6] = static_cast<float>(-f.y), m[10] = static_cast<float>(-f.z);
+  m[12] = static_cast<float>(-geometry::dot(s, eye));
+  m[13] = static_cast<float>(-geometry::dot(u, eye));
+  m[14] = static_cast<float>(geometry::dot(f, eye));
+  m[15] = 1.0f;
+  return m;
+}
+
+geometry::Bounds common_bounds(const std::vector<const geometry::Mesh*>& meshes) {
+  geometry::Bounds all{};
+  bool first = true;
+  for (const geometry::Mesh* mesh : meshes) {
+    if (mesh->positions.empty()) continue;
+    const geometry::Bounds b = geometry::bounds(*mesh);
+    if (first) {
+      all = b;
+      first = false;
+      continue;
+    }
+    all.min = {std::min(all.min.x, b.min.x), std::min(all.min.y, b.min.y), std::min(all.min.z, b.min.z)};
+    all.max = {std::max(all.max.x, b.max.x), std::max(all.max.y, b.max.y), std::max(all.max.z, b.max.z)};
+  }
+  return all;
+}
+
+Vec3 orbit_direction(const OrbitCamera& camera) {
+  const double az = camera.azimuth_deg * std::numbers::pi / 180.0;
+  const double el = camera.elevation_deg * std::numbers::pi / 180.0;
+  return {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+}
+
+}  // namespace
+
+MeshView::MeshView() {
+  program_ = gl::make_program(kVertexShader, kFragmentShader);
+  u_view_projection_ = glGetUniformLocation(program_, "view_projection");
+  u_eye_ = glGetUniformLocation(program_, "eye");
+  u_colour_ = glGetUniformLocation(program_, "colour");
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &vertex_buffer_);
+  glGenBuffers(1, &index_buffer_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  glBindVertexArray(0);
+}
+
+MeshView::~MeshView() {
+  glDeleteBuffers(1, &vertex_buffer_);
+  glDeleteBuffers(1, &index_buffer_);
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteProgram(program_);
+}
+
+void MeshView::upload(const geometry::Mesh& mesh) {
+  vertex_scratch_.resize(mesh.positions.size() * 6);
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+    const Vec3 p = mesh.positions[k];
+    const Vec3 n = k < mesh.normals.size() ? mesh.normals[k] : Vec3{0.0, 0.0, 1.0};
+    const float values[6] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
+                             static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)};
+    std::copy(values, values + 6, vertex_scratch_.begin() + static_cast<std::ptrdiff_t>(6 * k));
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertex_scratch_.size() * sizeof(float)),
+               vertex_scratch_.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+               mesh.indices.data(), GL_STREAM_DRAW);
+}
+
+void MeshView::draw_part(const geometry::Mesh& mesh, const char* part_name, const float rgba[4]) {
+  const geometry::MeshPart* part = mesh.part(part_name);
+  if (!part || part->index_count == 0) return;
+  glUniform4fv(u_colour_, 1, rgba);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part->index_count), GL_UNSIGNED_INT,
+                 reinterpret_cast<void*>(static_cast<std::uintptr_t>(part->first_index) * sizeof(std::uint32_t)));
+}
+
+GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width,
+                      int height) {
+  target_.bind(std::max(width, 16), std::max(height, 16));
+  glClearColor(0.03f, 0.12f, 0.20f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const geometry::Bounds bounds = common_bounds(meshes);
+  const double extent = std::max(geometry::norm(bounds.max - bounds.min), 1e-3);
+  const double fov = 40.0 * std::numbers::pi / 180.0;
+  const double distance = 0.6 * extent / std::tan(fov / 2.0) / std::max(camera.zoom, 0.05);
+  const Vec3 eye = bounds.centre() + distance * orbit_direction(camera);
+  const Mat4 vp = multiply(perspective(fov, static_cast<double>(target_.width()) / target_.height(),
+                                       distance * 0.01, distance * 10.0),
+                           look_at(eye, bounds.centre(), {0.0, 1.0, 0.0}));
+  glUseProgram(program_);
+  glUniformMatrix4fv(u_view_projection_, 1, GL_FALSE, vp.data());
+  glUniform3f(u_eye_, static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
+  glBindVertexArray(vao_);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_CULL_FACE);
+  static constexpr float kTentacles[4] = {1.00f, 0.72f, 0.80f, 0.9f};
+  static constexpr float kUmbrella[4] = {0.78f, 0.90f, 1.00f, 0.55f};
+  for (const geometry::Mesh* mesh : meshes) {  // opaque-ish tentacles first, with depth writes
+    upload(*mesh);
+    glDepthMask(GL_TRUE);
+    draw_part(*mesh, "tentacles", kTentacles);
+    glDepthMask(GL_FALSE);  // then the translucent umbrella over them
+    draw_part(*mesh, "umbrella", kUmbrella);
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return target_.colour_texture();
+}
+
+}  // namespace jellysim::viewer

@@ -1,0 +1,160 @@
+// End-to-end tests of `jellysim view` (docs/viewer.md): the viewer runs under a virtual X display
+// (xvfb-run, Mesa's software OpenGL) with scripted input events; the test checks the screenshot
+// is a real picture and that the state changed as the input asked (stats JSON with a timeline).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include "../cli_runner.hpp"
+#include "render/image.hpp"
+
+namespace {
+
+using jellysim::testing::fresh_scratch_dir;
+using jellysim::testing::read_text_file;
+using jellysim::testing::run_jellysim;
+
+bool have_xvfb_run() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+/// Runs the viewer on a virtual display.
+jellysim::testing::CliResult run_viewer_headless(const std::string& args) {
+  const std::string xvfb = "xvfb-run -a -s '-screen 0 1280x720x24' ";
+  const std::string cmd = xvfb + JELLYSIM_CLI_PATH + " view " + args + " 2>&1";
+  jellysim::testing::CliResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// The default 1280 × 720 layout: controls 330 px on the right, the 2D panel in the left half of
+// the rest (475 px), the tank fitted into it with a 4 px margin (docs/viewer.md).
+constexpr double kScalePxPerM = (475.0 - 8.0) / 0.8;
+constexpr double kTankTopPx = 4.0 + 0.5 * (712.0 - 467.0);
+double screen_x(double x_m) { return 4.0 + x_m * kScalePxPerM; }
+double screen_y(double y_m) { return kTankTopPx + (0.8 - y_m) * kScalePxPerM; }
+
+const nlohmann::json& timeline_entry(const nlohmann::json& stats, const std::string& event) {
+  for (const auto& e : stats["timeline"]) {
+    if (e["event"] == event) return e;
+  }
+  throw std::runtime_error("no timeline entry for '" + event + "'");
+}
+
+TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const auto dir = fresh_scratch_dir("viewer_scripted");
+  std::filesystem::create_directories(dir);
+  // The default jellyfish's apex is at (0.4, 0.328) m: grab it there and drag it 0.1 m right.
+  const double x0 = screen_x(0.4), y0 = screen_y(0.328), x1 = screen_x(0.5);
+  const std::string script = "5 pause\n"
+                             "8 mark paused\n"
+                             "10 drag " + std::to_string(x0) + " " + std::to_string(y0) + " " + std::to_string(x1) +
+                             " " + std::to_string(y0) + " 10\n"
+                             "22 mark dragged\n"
+                             "23 set frequency 0 1.3; 23 set viscosity 2e-5; 23 set noise.unstructured 0.9\n"
+                             "24 pause\n"
+                             "40 drag 100 200 160 200 5  # stir the water\n"
+                             "55 mark running\n";
+  std::ofstream(dir / "input.txt") << script;
+  const auto r = run_viewer_headless("--frames 60 --fps 0 --script " + (dir / "input.txt").string() +
+                                     " --screenshot " + (dir / "shot.png").string() + " --stats " +
+                                     (dir / "stats.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto stats = nlohmann::json::parse(read_text_file(dir / "stats.json"));
+  EXPECT_EQ(stats["frames"], 60);
+  EXPECT_GT(stats["steps"].get<long>(), 0);
+  EXPECT_GT(stats["fps"].get<double>(), 0.0);
+  EXPECT_GT(stats["sim_rate"].get<double>(), 0.0);
+  EXPECT_EQ(stats["failure"], "");
+
+  // Pausing stopped simulated time.
+  const auto& paused_at = timeline_entry(stats, "5 pause");
+  const auto& still_paused = timeline_entry(stats, "8 mark paused");
+  EXPECT_TRUE(still_paused["paused"].get<bool>());
+  EXPECT_EQ(paused_at["time_s"].get<double>(), still_paused["time_s"].get<double>());
+  EXPECT_EQ(paused_at["steps"], still_paused["steps"]);
+
+  // The drag moved jellyfish 0 by the dragged distance (0.1 m right), while paused.
+  const auto before = still_paused["jellyfish"][0]["centroid_m"];
+  const auto after = timeline_entry(stats, "22 mark dragged")["jellyfish"][0]["centroid_m"];
+  EXPECT_NEAR(after[0].get<double>() - before[0].get<double>(), 0.1, 2e-3);
+  EXPECT_NEAR(after[1].get<double>() - before[1].get<double>(), 0.0, 2e-3);
+
+  // The parameters took effect, and the simulation ran on after the second pause toggle.
+  const auto& state = stats["state"];
+  EXPECT_EQ(state["jellyfish"][0]["frequency_hz"].get<double>(), 1.3);
+  EXPECT_EQ(state["viscosity"].get<double>(), 2e-5);
+  EXPECT_EQ(state["noise"]["unstructured"].get<double>(), 0.9);
+  EXPECT_FALSE(state["paused"].get<bool>());
+  EXPECT_GT(timeline_entry(stats, "55 mark running")["time_s"].get<double>(), paused_at["time_s"].get<double>());
+
+  // The screenshot is a picture: many colours and real contrast.
+  const auto image = jellysim::render::read_png(dir / "shot.png");
+  ASSERT_EQ(image.width, 1280);
+  ASSERT_EQ(image.height, 720);
+  std::set<int> colours;
+  double sum = 0.0, sum2 = 0.0;
+  for (std::size_t k = 0; k + 2 < image.pixels.size(); k += 3) {
+    colours.insert(image.pixels[k] << 16 | image.pixels[k + 1] << 8 | image.pixels[k + 2]);
+    const double lum = 0.3 * image.pixels[k] + 0.59 * image.pixels[k + 1] + 0.11 * image.pixels[k + 2];
+    sum += lum;
+    sum2 += lum * lum;
+  }
+  const double n = static_cast<double>(image.pixels.size() / 3);
+  const double stddev = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  EXPECT_GT(colours.size(), 200u);
+  EXPECT_GT(stddev, 10.0);
+  // The 3D panel (x in [475, 950)) shows the jellyfish over the water: not one flat colour.
+  std::set<int> panel_colours;
+  for (int y = 100; y < 620; ++y) {
+    for (int x = 500; x < 925; ++x) {
+      const auto c = image.at(x, y);
+      panel_colours.insert(c[0] << 16 | c[1] << 8 | c[2]);
+    }
+  }
+  EXPECT_GT(panel_colours.size(), 50u);
+}
+
+TEST(Viewer, DraggingAnObstacleMovesIt) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const auto dir = fresh_scratch_dir("viewer_obstacle");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "scene.toml") << "scene = \"jellyfish\"\n[[objects]]\ntype = \"circle\"\n"
+                                       "centre = [0.2, 0.6]\nradius = 0.04\n";
+  const std::string drag = "2 pause; 3 drag " + std::to_string(screen_x(0.2)) + " " + std::to_string(screen_y(0.6)) +
+                           " " + std::to_string(screen_x(0.3)) + " " + std::to_string(screen_y(0.55)) +
+                           " 5; 10 mark moved";
+  const auto r = run_viewer_headless((dir / "scene.toml").string() + " --frames 12 --fps 0 --inject \"" + drag +
+                                     "\" --stats " + (dir / "stats.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto stats = nlohmann::json::parse(read_text_file(dir / "stats.json"));
+  const auto before = timeline_entry(stats, "2 pause")["obstacles"][0]["centroid_m"];
+  const auto after = timeline_entry(stats, "10 mark moved")["obstacles"][0]["centroid_m"];
+  EXPECT_NEAR(after[0].get<double>() - before[0].get<double>(), 0.1, 2e-3);
+  EXPECT_NEAR(after[1].get<double>() - before[1].get<double>(), -0.05, 2e-3);
+}
+
+TEST(Viewer, BadScriptIsAnInputErrorNamingTheLine) {
+  const auto r = run_jellysim("view --frames 1 --inject \"3 pause; 4 jump 1 2\"");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--inject, line 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown event 'jump'"), std::string::npos) << r.output;
+  const auto range = run_jellysim("view --frames 1 --inject \"3 set gamma 0 1.5\"");
+  EXPECT_EQ(range.exit_code, 2) << range.output;
+  EXPECT_NE(range.output.find("gamma must be in (0, 1]"), std::string::npos) << range.output;
+}
+
+TEST(Viewer, OptionOutOfRangeIsRejected) {
+  const auto r = run_jellysim("view --width 10");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--width"), std::string::npos) << r.output;
+}
+
+}  // namespace
