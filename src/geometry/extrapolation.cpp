@@ -28,11 +28,21 @@ struct Disc {
   Vec2 centre;
   Vec2 e{1.0, 0.0};
   double radius = 0.0;
-  /// Unit direction of angle σ on the disc: cos σ ê − sin σ ẑ.
-  Vec3 direction(double sigma) const {
-    return {std::cos(sigma) * e.x, std::cos(sigma) * e.y, -std::sin(sigma)};
+  /// Unit direction of angle σ on the disc, cos σ ê − sin σ ẑ, from cos σ and sin σ.
+  Vec3 direction(double cos_sigma, double sin_sigma) const { return {cos_sigma * e.x, cos_sigma * e.y, -sin_sigma}; }
+  Vec3 point(double cos_sigma, double sin_sigma) const { return lift(centre) + radius * direction(cos_sigma, sin_sigma); }
+};
+
+/// cos σ_j and sin σ_j of σ_j = 2πj/count (eq. 7.12), j = 0 … count − 1.
+struct AngleTable {
+  std::vector<double> cos, sin;
+  explicit AngleTable(int count) : cos(static_cast<std::size_t>(count)), sin(static_cast<std::size_t>(count)) {
+    for (int j = 0; j < count; ++j) {
+      const double sigma = kTwoPi * j / count;
+      cos[static_cast<std::size_t>(j)] = std::cos(sigma);
+      sin[static_cast<std::size_t>(j)] = std::sin(sigma);
+    }
   }
-  Vec3 point(double sigma) const { return lift(centre) + radius * direction(sigma); }
 };
 
 Disc disc_of(Vec2 left, Vec2 right, Vec2 axis) {
@@ -54,6 +64,7 @@ std::vector<Row> umbrella_rows(const RenderingSlice& slice) {
   const int m = static_cast<int>(slice.subumbrella.size());
   const int h = (m - 1) / 2;
   std::vector<Row> rows;
+  rows.reserve(static_cast<std::size_t>(2 * h + 2));
   auto add = [&](const std::vector<Vec2>& surface, int k, bool ex) {
     rows.push_back({disc_of(surface[static_cast<std::size_t>(k)], surface[static_cast<std::size_t>(m - 1 - k)], slice.axis),
                     ex, slice.umbrella_parameter[static_cast<std::size_t>(k)]});
@@ -67,23 +78,31 @@ std::vector<Row> umbrella_rows(const RenderingSlice& slice) {
 
 Vec3 face_normal(Vec3 a, Vec3 b, Vec3 c) { return cross(b - a, c - a); }
 
+/// Replaces `idx` by the umbrella's triangles (its capacity is kept).
 void umbrella_indices(const UmbrellaLayout& L, std::vector<std::uint32_t>& idx) {
   const int J = L.disc_points;
+  idx.resize(static_cast<std::size_t>(6 * J * (L.rows - 3) + 6 * J));
+  std::uint32_t* out = idx.data();
   for (int j = 0; j < J; ++j) {  // fan around the exumbrellar apex
     const int jn = (j + 1) % J;
-    idx.insert(idx.end(), {L.vertex(0, 0), L.vertex(1, j), L.vertex(1, jn)});
+    *out++ = L.vertex(0, 0);
+    *out++ = L.vertex(1, j);
+    *out++ = L.vertex(1, jn);
   }
   for (int r = 1; r + 2 < L.rows; ++r) {  // quads between rings r and r + 1, split into two triangles
     for (int j = 0; j < J; ++j) {
       const int jn = (j + 1) % J;
       const std::uint32_t a = L.vertex(r, j), b = L.vertex(r + 1, j), c = L.vertex(r + 1, jn), d = L.vertex(r, jn);
-      idx.insert(idx.end(), {a, b, c, a, c, d});
+      out[0] = a, out[1] = b, out[2] = c, out[3] = a, out[4] = c, out[5] = d;
+      out += 6;
     }
   }
   const int last = L.rows - 1;
   for (int j = 0; j < J; ++j) {  // fan around the subumbrellar apex
     const int jn = (j + 1) % J;
-    idx.insert(idx.end(), {L.vertex(last - 1, j), L.vertex(last, 0), L.vertex(last - 1, jn)});
+    *out++ = L.vertex(last - 1, j);
+    *out++ = L.vertex(last, 0);
+    *out++ = L.vertex(last - 1, jn);
   }
 }
 
@@ -99,10 +118,13 @@ Vec3 any_orthogonal(Vec3 t) {
   return norm(c) > 1e-6 ? normalized(c) : normalized(cross(t, Vec3{1.0, 0.0, 0.0}));
 }
 
-/// A tube around `line` (parallel-transported frames), appended to `mesh`.
-void append_tube(const std::vector<Vec3>& line, int sides, double radius_m, Mesh& mesh) {
-  const auto first = static_cast<std::uint32_t>(mesh.positions.size());
-  const std::size_t count = line.size();
+/// A tube around `line` (parallel-transported frames) written into mesh vertices from `first`
+/// and indices from `first_index` (both already sized); `sides` angles in `angles`.
+void write_tube(const std::vector<Vec3>& line, const AngleTable& angles, double radius_m, Mesh& mesh,
+                std::size_t first, std::size_t first_index) {
+  const std::size_t count = line.size(), S = angles.cos.size();
+  Vec3* position = mesh.positions.data() + first;
+  Vec3* normal_out = mesh.normals.data() + first;
   Vec3 normal = any_orthogonal(polyline_tangent(line, 0));
   for (std::size_t m = 0; m < count; ++m) {
     const Vec3 t = polyline_tangent(line, m);
@@ -110,20 +132,21 @@ void append_tube(const std::vector<Vec3>& line, int sides, double radius_m, Mesh
     normal = norm(projected) > 1e-12 ? normalized(projected) : any_orthogonal(t);
     const Vec3 binormal = cross(t, normal);
     const double r = radius_m * (1.0 - 0.7 * static_cast<double>(m) / static_cast<double>(count - 1));
-    for (int s = 0; s < sides; ++s) {
-      const double phi = kTwoPi * s / sides;
-      const Vec3 dir = std::cos(phi) * normal + std::sin(phi) * binormal;
-      mesh.positions.push_back(line[m] + r * dir);
-      mesh.normals.push_back(dir);
+    for (std::size_t s = 0; s < S; ++s) {  // φ_s = 2πs/sides
+      const Vec3 dir = angles.cos[s] * normal + angles.sin[s] * binormal;
+      *position++ = line[m] + r * dir;
+      *normal_out++ = dir;
     }
   }
-  const auto S = static_cast<std::uint32_t>(sides);
+  std::uint32_t* out = mesh.indices.data() + first_index;
+  const auto base = static_cast<std::uint32_t>(first), n = static_cast<std::uint32_t>(S);
   for (std::uint32_t m = 0; m + 1 < count; ++m) {
-    for (std::uint32_t s = 0; s < S; ++s) {
-      const std::uint32_t sn = (s + 1) % S;
-      const std::uint32_t a = first + m * S + s, b = first + (m + 1) * S + s;
-      const std::uint32_t c = first + (m + 1) * S + sn, d = first + m * S + sn;
-      mesh.indices.insert(mesh.indices.end(), {a, c, b, a, d, c});
+    for (std::uint32_t s = 0; s < n; ++s) {
+      const std::uint32_t sn = (s + 1) % n;
+      const std::uint32_t a = base + m * n + s, b = base + (m + 1) * n + s;
+      const std::uint32_t c = base + (m + 1) * n + sn, d = base + m * n + sn;
+      out[0] = a, out[1] = c, out[2] = b, out[3] = a, out[4] = d, out[5] = c;
+      out += 6;
     }
   }
 }
@@ -161,11 +184,17 @@ std::uint32_t UmbrellaLayout::vertex(int row, int j) const {
 void umbrella_normals(const UmbrellaLayout& L, const std::vector<Vec3>& x, std::vector<Vec3>& normals) {
   const int J = L.disc_points;
   normals.resize(x.size());
+  const auto row = [&](int r) { return x.data() + L.vertex(r, 0); };
   for (int r = 1; r + 1 < L.rows; ++r) {
+    // Rows r − 1 and r + 1 (a pole: one vertex for every j, stride 0).
+    const Vec3 *below = row(r - 1), *above = row(r + 1), *ring = row(r);
+    const std::size_t below_step = r - 1 == 0 ? 0 : 1, above_step = r + 1 == L.rows - 1 ? 0 : 1;
+    Vec3* out = normals.data() + L.vertex(r, 0);
     for (int j = 0; j < J; ++j) {
-      const Vec3 along = x[L.vertex(r + 1, j)] - x[L.vertex(r - 1, j)];
-      const Vec3 around = x[L.vertex(r, (j + 1) % J)] - x[L.vertex(r, (j + J - 1) % J)];
-      normals[L.vertex(r, j)] = normalized(cross(along, around));  // eq. 7.9
+      const auto k = static_cast<std::size_t>(j);
+      const Vec3 along = above[above_step * k] - below[below_step * k];
+      const Vec3 around = ring[j + 1 == J ? 0 : k + 1] - ring[j == 0 ? static_cast<std::size_t>(J - 1) : k - 1];
+      out[k] = normalized(cross(along, around));  // eq. 7.9
     }
   }
   Vec3 top, bottom;
@@ -192,84 +221,146 @@ double resolve_noise_length(const NoiseSettings& noise, const jellyfish::SliceFr
 }
 
 FrameGeometry GeometryBuilder::build(const jellyfish::SliceFrame& frame) const {
+  FrameGeometry out;
+  build(frame, out);
+  return out;
+}
+
+void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& out) const {
   const GeometrySettings& s = settings_;
   const NoiseSettings& ns = s.noise;
   const RenderingSlice slice = make_rendering_slice(frame, s.latitude_samples, s.tentacle_samples, s.interpolant);
   const std::vector<Row> rows = umbrella_rows(slice);
 
-  FrameGeometry out;
   out.time_s = frame.time_s;
   UmbrellaLayout& L = out.umbrella;
   L = {static_cast<int>(rows.size()), s.disc_points, (static_cast<int>(rows.size()) - 2) / 2};
   const int J = L.disc_points;
   const double length = length_scale_m_;
+  const AngleTable disc_angles(J);  // σ_j, eq. 7.12
 
   // Unperturbed discs (Figure 7.6) and their eq. 7.9 normals.
-  std::vector<Vec3> x(L.vertex_count()), n;
+  std::vector<Vec3>& x = out.mesh.positions;
+  std::vector<Vec3>& n = out.mesh.normals;
+  x.resize(L.vertex_count());
   x[L.vertex(0, 0)] = lift(rows.front().disc.centre);
   x[L.vertex(L.rows - 1, 0)] = lift(rows.back().disc.centre);
-  for (int r = 1; r + 1 < L.rows; ++r)
-    for (int j = 0; j < J; ++j) x[L.vertex(r, j)] = rows[static_cast<std::size_t>(r)].disc.point(kTwoPi * j / J);
+  for (int r = 1; r + 1 < L.rows; ++r) {
+    const Disc& disc = rows[static_cast<std::size_t>(r)].disc;
+    Vec3* ring = x.data() + L.vertex(r, 0);
+    for (std::size_t j = 0; j < static_cast<std::size_t>(J); ++j) ring[j] = disc.point(disc_angles.cos[j], disc_angles.sin[j]);
+  }
   umbrella_normals(L, x, n);
 
-  // Noise along the unperturbed normals (poles stay: d_i = 0 there and σ is undefined).
+  // Noise along the unperturbed normals (poles stay: d_i = 0 there and σ is undefined). The terms
+  // that depend on j only are tabulated; the Perlin term depends on (d_i, d_j), which repeat
+  // (d_i: row r and rows − 1 − r; d_j: j and J − j), so each distinct pair is evaluated once.
+  std::vector<double> structural(static_cast<std::size_t>(J)), ridge(static_cast<std::size_t>(J));
+  for (int j = 0; j < J; ++j) {
+    const double sigma = kTwoPi * j / J;  // eq. 7.12
+    structural[static_cast<std::size_t>(j)] =
+        ns.structural_weight * structural_noise(length, ns.structural_frequency, sigma, ns.structural_absolute);
+    ridge[static_cast<std::size_t>(j)] = compression_ridge(ns.compression_frequency, sigma);
+  }
+  const bool unstructured = ns.unstructured_weight != 0.0;
+  const int half_rows = (L.rows - 1) / 2, half_j = J / 2;
+  std::vector<double> perlin;  // [min(r, rows − 1 − r)][min(j, J − j)]
+  if (unstructured) {
+    perlin.resize(static_cast<std::size_t>((half_rows + 1) * (half_j + 1)));
+    for (int ri = 1; ri <= half_rows; ++ri) {
+      const double d_i = latitude_distance(ri, 0, L.rows - 1, L.rows - 1);
+      for (int jj = 0; jj <= half_j; ++jj)
+        perlin[static_cast<std::size_t>(ri * (half_j + 1) + jj)] =
+            unstructured_noise(noise_, ns, length, d_i, longitude_distance(jj, J), frame.time_s);
+    }
+  }
   for (int r = 1; r + 1 < L.rows; ++r) {
     const Row& row = rows[static_cast<std::size_t>(r)];
-    const double d_i = latitude_distance(r, 0, L.rows - 1, L.rows - 1);
     const double kappa = row.exumbrella ? contraction_at(frame.muscles, frame.umbrella.size(), row.u, ns.max_contraction) : 0.0;
+    const double compression_scale = length * kappa;  // eq. 7.15: ϑ κ {…}
+    const double side = row.exumbrella || !ns.bend_shell ? 1.0 : -1.0;
+    const double* noise_row = unstructured ? perlin.data() + std::min(r, L.rows - 1 - r) * (half_j + 1) : nullptr;
+    Vec3* ring = x.data() + L.vertex(r, 0);
+    const Vec3* normal = n.data() + L.vertex(r, 0);
     for (int j = 0; j < J; ++j) {
-      const double sigma = kTwoPi * j / J;  // eq. 7.12
-      double c = ns.structural_weight * structural_noise(length, ns.structural_frequency, sigma, ns.structural_absolute);
-      if (row.exumbrella) c += ns.compression_weight * compression_noise(length, kappa, ns.compression_frequency, sigma);
-      if (ns.unstructured_weight != 0.0) {
-        const double side = row.exumbrella || !ns.bend_shell ? 1.0 : -1.0;
-        c += side * ns.unstructured_weight *
-             unstructured_noise(noise_, ns, length, d_i, longitude_distance(j, J), frame.time_s);
-      }
-      x[L.vertex(r, j)] += c * n[L.vertex(r, j)];
+      const auto k = static_cast<std::size_t>(j);
+      double c = structural[k];
+      if (row.exumbrella) c += ns.compression_weight * (compression_scale * ridge[k]);
+      if (unstructured) c += side * ns.unstructured_weight * noise_row[std::min(j, J - j)];
+      ring[k] += c * normal[k];
     }
   }
   umbrella_normals(L, x, n);  // §7.4: normals of the perturbed surface
 
-  out.mesh.positions = std::move(x);
-  out.mesh.normals = std::move(n);
   umbrella_indices(L, out.mesh.indices);
-  out.mesh.parts.push_back({"umbrella", 0, static_cast<std::uint32_t>(out.mesh.indices.size())});
+  out.mesh.parts.resize(1);
+  out.mesh.parts[0] = {"umbrella", 0, static_cast<std::uint32_t>(out.mesh.indices.size())};
 
   // Tentacles: discs between opposing slice tentacles, one 3D strand per angle.
   const std::size_t T = slice.tentacles.size();
+  const std::size_t strands = T / 2 * static_cast<std::size_t>(s.tentacle_count) + T % 2;
+  out.tentacle_lines.resize(strands);
+  const AngleTable strand_angles(s.tentacle_count);
+  const int half_count = s.tentacle_count / 2;
+  std::vector<Disc> discs;
+  std::vector<double> strand_noise;  // [m][min(j, count − j)]
+  std::size_t line_index = 0;
   for (std::size_t t = 0; t < (T + 1) / 2; ++t) {
     const auto& left = slice.tentacles[t];
     const auto& right = slice.tentacles[T - 1 - t];
+    const std::size_t M = left.size();
     if (t == T - 1 - t) {  // an unpaired middle strand stays a single line
-      std::vector<Vec3> line;
-      for (const Vec2& p : left) line.push_back(lift(p));
-      out.tentacle_lines.push_back(std::move(line));
+      std::vector<Vec3>& line = out.tentacle_lines[line_index++];
+      line.resize(M);
+      for (std::size_t m = 0; m < M; ++m) line[m] = lift(left[m]);
       continue;
     }
-    for (int j = 0; j < s.tentacle_count; ++j) {
-      const double sigma = kTwoPi * j / s.tentacle_count;
-      const double d_j = longitude_distance(j, s.tentacle_count);
-      std::vector<Vec3> line;
-      for (std::size_t m = 0; m < left.size(); ++m) {
-        const Disc disc = disc_of(left[m], right[m], slice.axis);
-        Vec3 p = disc.point(sigma);
-        if (ns.tentacles && ns.unstructured_weight != 0.0) {
-          const double d_i = static_cast<double>(m) / static_cast<double>(left.size() - 1);
-          p += ns.unstructured_weight * unstructured_noise(noise_, ns, length, d_i, d_j, frame.time_s) *
-               disc.direction(sigma);
-        }
-        line.push_back(p);
+    discs.resize(M);
+    for (std::size_t m = 0; m < M; ++m) discs[m] = disc_of(left[m], right[m], slice.axis);
+    const bool noisy = ns.tentacles && unstructured;
+    if (noisy) {
+      strand_noise.resize(M * static_cast<std::size_t>(half_count + 1));
+      for (std::size_t m = 0; m < M; ++m) {
+        const double d_i = static_cast<double>(m) / static_cast<double>(M - 1);
+        for (int jj = 0; jj <= half_count; ++jj)
+          strand_noise[m * static_cast<std::size_t>(half_count + 1) + static_cast<std::size_t>(jj)] =
+              ns.unstructured_weight *
+              unstructured_noise(noise_, ns, length, d_i, longitude_distance(jj, s.tentacle_count), frame.time_s);
       }
-      out.tentacle_lines.push_back(std::move(line));
+    }
+    for (int j = 0; j < s.tentacle_count; ++j) {
+      const double cs = strand_angles.cos[static_cast<std::size_t>(j)], sn = strand_angles.sin[static_cast<std::size_t>(j)];
+      const auto jj = static_cast<std::size_t>(std::min(j, s.tentacle_count - j));
+      std::vector<Vec3>& line = out.tentacle_lines[line_index++];
+      line.resize(M);
+      for (std::size_t m = 0; m < M; ++m) {
+        Vec3 p = discs[m].point(cs, sn);
+        if (noisy) p += strand_noise[m * static_cast<std::size_t>(half_count + 1) + jj] * discs[m].direction(cs, sn);
+        line[m] = p;
+      }
     }
   }
   if (!out.tentacle_lines.empty()) {
-    const auto first_index = static_cast<std::uint32_t>(out.mesh.indices.size());
-    for (const auto& line : out.tentacle_lines) append_tube(line, s.tube_sides, s.tentacle_radius_m, out.mesh);
-    out.mesh.parts.push_back({"tentacles", first_index, static_cast<std::uint32_t>(out.mesh.indices.size()) - first_index});
+    const AngleTable tube_angles(s.tube_sides);
+    const auto S = static_cast<std::size_t>(s.tube_sides);
+    std::size_t vertices = x.size(), indices = out.mesh.indices.size();
+    for (const auto& line : out.tentacle_lines) {
+      vertices += line.size() * S;
+      indices += (line.size() - 1) * S * 6;
+    }
+    const std::size_t first_index = out.mesh.indices.size();
+    std::size_t vertex = x.size(), index = first_index;
+    x.resize(vertices);
+    n.resize(vertices);
+    out.mesh.indices.resize(indices);
+    for (const auto& line : out.tentacle_lines) {
+      write_tube(line, tube_angles, s.tentacle_radius_m, out.mesh, vertex, index);
+      vertex += line.size() * S;
+      index += (line.size() - 1) * S * 6;
+    }
+    out.mesh.parts.push_back({"tentacles", static_cast<std::uint32_t>(first_index),
+                              static_cast<std::uint32_t>(indices - first_index)});
   }
-  return out;
 }
 
 Animation build_animation(const std::vector<jellyfish::SliceFrame>& frames, const GeometrySettings& settings) {

@@ -62,6 +62,9 @@ class GeometryBuilder {
 
   /// Validates the slice (InputError) and builds its mesh.
   FrameGeometry build(const jellyfish::SliceFrame& frame) const;
+  /// The same into `out`, reusing its buffers: no allocation of the mesh arrays once `out` has
+  /// held a frame of this topology (for per-frame use in an interactive loop). Same values.
+  void build(const jellyfish::SliceFrame& frame, FrameGeometry& out) const;
 
   const GeometrySettings& settings() const { return settings_; }
   double length_scale_m() const { return length_scale_m_; }

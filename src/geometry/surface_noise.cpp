@@ -17,9 +17,13 @@ double contraction_amount(double length_m, double rest_length_m, double gamma) {
   return std::clamp(1.0 - printed, 0.0, 1.0);
 }
 
-double compression_noise(double length_m, double contraction, double frequency, double sigma_rad) {
+double compression_ridge(double frequency, double sigma_rad) {
   const double where = 0.5 * std::sin(frequency * sigma_rad) + 0.5;  // eq. 7.14
-  return length_m * contraction * (0.34 + 0.17 * where);             // eq. 7.15
+  return 0.34 + 0.17 * where;                                        // eq. 7.15's braces
+}
+
+double compression_noise(double length_m, double contraction, double frequency, double sigma_rad) {
+  return length_m * contraction * compression_ridge(frequency, sigma_rad);  // eq. 7.15
 }
 
 double latitude_distance(int i, int i_out, int i_in, int i_max) {

@@ -47,6 +47,8 @@ double contraction_amount(double length_m, double rest_length_m, double gamma);
 
 /// Eq. 7.15: ϑ κ {0.34 + 0.17(½ sin(f_c σ) + ½)}, metres; exumbrellar side only.
 double compression_noise(double length_m, double contraction, double frequency, double sigma_rad);
+/// The braces of eq. 7.15, 0.34 + 0.17(½ sin(f_c σ) + ½): compression_noise = ϑ κ × this.
+double compression_ridge(double frequency, double sigma_rad);
 
 /// Eq. 7.16: d_i = min(|i − i_out|, |i − i_in|) / i_max.
 double latitude_distance(int i, int i_out, int i_in, int i_max);

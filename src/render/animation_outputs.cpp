@@ -221,7 +221,7 @@ AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame
   const geometry::GeometryBuilder builder(s.geometry, geometry::resolve_noise_length(s.geometry.noise, frames.front()));
   const bool pixels = s.png_frames || s.video;
   std::unique_ptr<OffscreenRenderer> renderer;
-  if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px);
+  if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
   std::unique_ptr<Mp4Writer> video;
   const auto video_tmp = out.temporary_for("jellyfish.mp4");
   if (s.video) video = std::make_unique<Mp4Writer>(video_tmp, s.width_px, s.height_px, s.fps);
@@ -232,6 +232,7 @@ AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame
   geometry::Animation animation;
   std::unique_ptr<FollowCamera> camera;
   double geometry_s = 0.0, render_s = 0.0;
+  RgbImage image;  // reused frame to frame
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto t0 = Clock::now();
     geometry::FrameGeometry g = builder.build(frames[k]);
@@ -242,7 +243,7 @@ AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame
     const Camera view = camera->next(g);
     if (pixels) {
       t0 = Clock::now();
-      const RgbImage image = renderer->render(g.mesh, view, s.style);
+      renderer->render(g.mesh, view, s.style, image);
       render_s += seconds_since(t0);
       if (s.png_frames) {
         const std::string name = frame_name(k, "png");

@@ -29,6 +29,9 @@ struct PipelineSettings {
   double camera_azimuth_deg = 25.0;   ///< around the axis, from the slice normal (+z)
   double camera_follow = 0.25;        ///< per frame, the fraction of the way the target moves to the jellyfish (1: rigid)
   double fov_y_deg = 40.0;
+  /// Multisampling of the rendered frames (OffscreenRenderer; 1: none). Not a config field: the
+  /// video keeps 4×; the interactive setting is 1 with style.per_vertex_lighting (docs/rendering.md).
+  int samples = 4;
   RenderStyle style;
   bool png_frames = true, video = true, glb = true, obj = true, ply = true, viewer = true;
   /// The bundled viewer script (three.js + GLTFLoader + controls) copied next to viewer.html.

@@ -10,9 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/errors.hpp"
@@ -98,12 +100,13 @@ EGLContext create_context(EGLDisplay d, std::string* why) {
 constexpr const char* kBackgroundVertex = R"(#version 330 core
 out vec2 uv;
 void main() {
-  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  vec2 p = vec2(gl_VertexID == 1 ? 4.0 : -1.0, gl_VertexID == 2 ? 4.0 : -1.0);
   uv = 0.5 * (p + 1.0);
   gl_Position = vec4(p, 0.0, 1.0);
 })";
 
 // Vertical water gradient, soft light shafts fanning from above, a vignette; gamma-encoded output.
+// Drawn once per style and size into a texture (OffscreenRenderer::Impl::prepare_background).
 constexpr const char* kBackgroundFragment = R"(#version 330 core
 in vec2 uv;
 out vec4 colour;
@@ -122,6 +125,41 @@ void main() {
   colour = vec4(pow(max(c, vec3(0.0)), vec3(1.0 / 2.2)), 1.0);
 })";
 
+// Copies the cached background texel by texel into a multisampled framebuffer (a blit cannot
+// write into one); every sample of a pixel gets the pixel's texel, as the background shader did.
+constexpr const char* kCopyFragment = R"(#version 330 core
+out vec4 colour;
+uniform sampler2D image;
+void main() {
+  colour = texelFetch(image, ivec2(gl_FragCoord.xy), 0);
+})";
+
+// Three-term lighting (ambient + Lambert diffuse + Blinn–Phong specular) with directional lights,
+// plus a view-dependent rim that makes grazing parts more opaque and brighter; gamma-encoded.
+// n: unit normal facing the viewer's side, v: unit direction to the eye.
+constexpr const char* kLighting = R"(
+uniform vec4 base;
+uniform vec3 eye;
+uniform vec3 light_direction[2];
+uniform vec3 light_colour[2];
+uniform float ambient;
+uniform float specular;
+uniform float shininess;
+uniform float rim;
+vec4 shade(vec3 n, vec3 v) {
+  vec3 c = ambient * base.rgb;
+  for (int i = 0; i < 2; ++i) {
+    vec3 l = normalize(light_direction[i]);
+    vec3 h = normalize(l + v);
+    c += light_colour[i] * (max(dot(n, l), 0.0) * base.rgb + specular * pow(max(dot(n, h), 0.0), shininess));
+  }
+  float grazing = pow(1.0 - abs(dot(n, v)), 2.0);
+  c += rim * grazing * vec3(0.45, 0.65, 0.75);
+  return vec4(pow(max(c, vec3(0.0)), vec3(1.0 / 2.2)), clamp(base.a + rim * grazing, 0.0, 1.0));
+}
+)";
+
+// Per-pixel lighting (the default): the vertex shader passes position and normal on.
 constexpr const char* kMeshVertex = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -135,38 +173,49 @@ void main() {
   gl_Position = view_projection * vec4(position - origin, 1.0);
 })";
 
-// Three-term lighting (ambient + Lambert diffuse + Blinn–Phong specular) with directional lights,
-// two-sided, plus a view-dependent rim that makes grazing parts more opaque and brighter.
-constexpr const char* kMeshFragment = R"(#version 330 core
+// Two-sided: the normal is flipped on back faces.
+constexpr const char* kMeshFragmentHead = R"(#version 330 core
 in vec3 world_position;
 in vec3 world_normal;
 out vec4 colour;
-uniform vec4 base;
-uniform vec3 eye;
-uniform vec3 light_direction[2];
-uniform vec3 light_colour[2];
-uniform float ambient;
-uniform float specular;
-uniform float shininess;
-uniform float rim;
+)";
+constexpr const char* kMeshFragmentMain = R"(
 void main() {
   vec3 n = normalize(world_normal);
   if (!gl_FrontFacing) n = -n;
-  vec3 v = normalize(eye - world_position);
-  vec3 c = ambient * base.rgb;
-  for (int i = 0; i < 2; ++i) {
-    vec3 l = normalize(light_direction[i]);
-    vec3 h = normalize(l + v);
-    c += light_colour[i] * (max(dot(n, l), 0.0) * base.rgb + specular * pow(max(dot(n, h), 0.0), shininess));
-  }
-  float grazing = pow(1.0 - abs(dot(n, v)), 2.0);
-  c += rim * grazing * vec3(0.45, 0.65, 0.75);
-  colour = vec4(pow(max(c, vec3(0.0)), vec3(1.0 / 2.2)), clamp(base.a + rim * grazing, 0.0, 1.0));
+  colour = shade(n, normalize(eye - world_position));
 })";
 
-GLuint compile(GLenum type, const char* source) {
+// Per-vertex (Gouraud) lighting, RenderStyle::per_vertex_lighting: both sides' colours are lit
+// at the vertices and interpolated; the fragment shader picks the side.
+constexpr const char* kGouraudVertexHead = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 view_projection;
+uniform vec3 origin;
+out vec4 front_colour;
+out vec4 back_colour;
+)";
+constexpr const char* kGouraudVertexMain = R"(
+void main() {
+  vec3 n = normalize(normal);
+  vec3 v = normalize(eye - position);
+  front_colour = shade(n, v);
+  back_colour = shade(-n, v);
+  gl_Position = view_projection * vec4(position - origin, 1.0);
+})";
+constexpr const char* kGouraudFragment = R"(#version 330 core
+in vec4 front_colour;
+in vec4 back_colour;
+out vec4 colour;
+void main() {
+  colour = gl_FrontFacing ? front_colour : back_colour;
+})";
+
+GLuint compile(GLenum type, const std::string& source) {
   const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -179,7 +228,7 @@ GLuint compile(GLenum type, const char* source) {
   return shader;
 }
 
-GLuint link(const char* vertex, const char* fragment) {
+GLuint link(const std::string& vertex, const std::string& fragment) {
   const GLuint vs = compile(GL_VERTEX_SHADER, vertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
   const GLuint program = glCreateProgram();
   glAttachShader(program, vs);
@@ -259,45 +308,114 @@ bool offscreen_gl_available(std::string* why) {
 
 struct OffscreenRenderer::Impl {
   int width = 0, height = 0;
+  int samples = 4;  ///< in use (1: single-sample framebuffer)
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
-  GLuint ms_fbo = 0, ms_colour = 0, ms_depth = 0, fbo = 0, colour = 0;
-  GLuint background = 0, shaded = 0, vao = 0, vbo = 0, ibo = 0;
+  GLuint ms_fbo = 0, ms_colour = 0, ms_depth = 0;  ///< multisampled target (samples > 1)
+  GLuint fbo = 0, colour = 0, depth = 0;           ///< single-sample target, or the resolve target
+  GLuint draw_fbo = 0;                             ///< ms_fbo or fbo
+  GLuint background_fbo = 0, background_texture = 0;
+  GLuint background = 0, copy = 0, vao = 0, vbo = 0, ibo = 0;
+  GLuint screen_vao = 0;  ///< no attributes: the full-screen passes (positions from gl_VertexID)
+  std::size_t vbo_bytes = 0, ibo_bytes = 0;
+
+  /// A mesh program and its uniform locations.
+  struct MeshProgram {
+    GLuint program = 0;
+    GLint view_projection = -1, origin = -1, eye = -1, light_direction[2] = {-1, -1}, light_colour[2] = {-1, -1},
+          ambient = -1, specular = -1, shininess = -1, rim = -1, base = -1;
+  };
+  MeshProgram per_pixel, per_vertex;  ///< per_vertex is linked on first use
+  const MeshProgram* mesh_program = nullptr;  ///< the one in use for this frame
+
+  /// The style the cached background was drawn for (valid when has_background).
+  bool has_background = false;
+  std::array<double, 3> background_top{}, background_bottom{};
+  bool background_shafts = false;
+
   std::vector<float> vertex_data;
+  std::vector<std::uint32_t> index_data;
   std::vector<std::uint8_t> rgba;
 
-  int samples = 4;
-  void make_framebuffers();
-  void draw_background(const RenderStyle& style);
-  void draw_part(const geometry::MeshPart& part, const std::array<double, 4>& rgba);
+  /// Every call: another context (another renderer, a viewer's window) may have been made current
+  /// in between; with the same context current it costs well under a microsecond (Mesa 22).
+  void make_current() const {
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+      throw RunError("EGL cannot make the renderer's context current");
+  }
+  void make_framebuffers(int requested_samples);
+  void prepare_background(const RenderStyle& style);
+  void draw_background();
+  static MeshProgram make_mesh_program(const std::string& vertex, const std::string& fragment);
   void set_mesh_uniforms(const Camera& camera, const RenderStyle& style);
-  void upload(const geometry::Mesh& mesh);
+  /// Uploads the vertices and the draw order; returns the index ranges (offset, count) of the
+  /// tentacles, the umbrella's back faces and its front faces, in index_data.
+  std::array<std::pair<std::size_t, std::size_t>, 3> upload(const geometry::Mesh& mesh, Vec3 eye);
+  void draw_range(std::pair<std::size_t, std::size_t> range, const std::array<double, 4>& rgba);
 };
 
-void OffscreenRenderer::Impl::make_framebuffers() {
+namespace {
+
+GLuint make_renderbuffer(GLsizei samples, GLenum format, int width, int height) {
+  GLuint rb = 0;
+  glGenRenderbuffers(1, &rb);
+  glBindRenderbuffer(GL_RENDERBUFFER, rb);
+  if (samples > 1)
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+  else
+    glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+  return rb;
+}
+
+GLuint make_framebuffer(GLuint colour, GLuint depth, const char* what) {
+  GLuint fb = 0;
+  glGenFramebuffers(1, &fb);
+  glBindFramebuffer(GL_FRAMEBUFFER, fb);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  if (depth) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw RunError(std::string("OpenGL ") + what + " framebuffer is incomplete");
+  return fb;
+}
+
+void set_vec3(GLint location, Vec3 v) {
+  glUniform3f(location, static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z));
+}
+
+}  // namespace
+
+void OffscreenRenderer::Impl::make_framebuffers(int requested_samples) {
   GLint max_samples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  const GLsizei count = std::min(samples, static_cast<int>(max_samples));
-  glGenRenderbuffers(1, &ms_colour);
-  glBindRenderbuffer(GL_RENDERBUFFER, ms_colour);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, count, GL_RGBA8, width, height);
-  glGenRenderbuffers(1, &ms_depth);
-  glBindRenderbuffer(GL_RENDERBUFFER, ms_depth);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, count, GL_DEPTH_COMPONENT24, width, height);
-  glGenFramebuffers(1, &ms_fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, ms_colour);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, ms_depth);
+  const GLsizei count = std::min(requested_samples, static_cast<int>(max_samples));
+  if (count > 1) {
+    ms_colour = make_renderbuffer(count, GL_RGBA8, width, height);
+    ms_depth = make_renderbuffer(count, GL_DEPTH_COMPONENT24, width, height);
+    ms_fbo = make_framebuffer(ms_colour, ms_depth, "multisampled");
+    GLint got = 0;  // the driver may round the count up (llvmpipe offers 4 only)
+    glGetIntegerv(GL_SAMPLES, &got);
+    samples = std::max(1, static_cast<int>(got));
+    colour = make_renderbuffer(1, GL_RGBA8, width, height);
+    fbo = make_framebuffer(colour, 0, "resolve");
+    draw_fbo = ms_fbo;
+  } else {
+    samples = 1;
+    colour = make_renderbuffer(1, GL_RGBA8, width, height);
+    depth = make_renderbuffer(1, GL_DEPTH_COMPONENT24, width, height);
+    fbo = make_framebuffer(colour, depth, "single-sample");
+    draw_fbo = fbo;
+  }
+  glGenTextures(1, &background_texture);
+  glBindTexture(GL_TEXTURE_2D, background_texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  glGenFramebuffers(1, &background_fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, background_fbo);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, background_texture, 0);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw RunError("OpenGL multisampled framebuffer is incomplete");
-  glGenRenderbuffers(1, &colour);
-  glBindRenderbuffer(GL_RENDERBUFFER, colour);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-  glGenFramebuffers(1, &fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw RunError("OpenGL resolve framebuffer is incomplete");
+    throw RunError("OpenGL background framebuffer is incomplete");
 }
 
 OffscreenRenderer::OffscreenRenderer(int width_px, int height_px, int samples) : impl_(std::make_unique<Impl>()) {
@@ -309,7 +427,6 @@ OffscreenRenderer::OffscreenRenderer(int width_px, int height_px, int samples) :
   Impl& m = *impl_;
   m.width = width_px;
   m.height = height_px;
-  m.samples = samples;
   std::string why;
   m.display = acquire_display(&why);
   if (m.display == EGL_NO_DISPLAY) throw RunError("no offscreen OpenGL: " + why);
@@ -319,18 +436,32 @@ OffscreenRenderer::OffscreenRenderer(int width_px, int height_px, int samples) :
     throw RunError("no offscreen OpenGL: " + why);
   }
   try {
-    m.make_framebuffers();
+    m.make_framebuffers(samples);
     m.background = link(kBackgroundVertex, kBackgroundFragment);
-    m.shaded = link(kMeshVertex, kMeshFragment);
+    m.copy = link(kBackgroundVertex, kCopyFragment);
+    m.per_pixel = Impl::make_mesh_program(kMeshVertex, std::string(kMeshFragmentHead) + kLighting + kMeshFragmentMain);
   } catch (...) {
     eglMakeCurrent(m.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(m.display, m.context);
     release_display();
     throw;
   }
+  glUseProgram(m.copy);
+  glUniform1i(glGetUniformLocation(m.copy, "image"), 0);
+  glGenVertexArrays(1, &m.screen_vao);
   glGenVertexArrays(1, &m.vao);
   glGenBuffers(1, &m.vbo);
   glGenBuffers(1, &m.ibo);
+  glBindVertexArray(m.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);  // part of the vertex array's state
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<const void*>(3 * sizeof(float)));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glDepthFunc(GL_LESS);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
@@ -339,12 +470,16 @@ OffscreenRenderer::~OffscreenRenderer() {
   glDeleteBuffers(1, &m.vbo);
   glDeleteBuffers(1, &m.ibo);
   glDeleteVertexArrays(1, &m.vao);
+  glDeleteVertexArrays(1, &m.screen_vao);
   glDeleteProgram(m.background);
-  glDeleteProgram(m.shaded);
-  glDeleteFramebuffers(1, &m.ms_fbo);
-  glDeleteFramebuffers(1, &m.fbo);
-  const GLuint buffers[] = {m.ms_colour, m.ms_depth, m.colour};
-  glDeleteRenderbuffers(3, buffers);
+  glDeleteProgram(m.copy);
+  glDeleteProgram(m.per_pixel.program);
+  if (m.per_vertex.program) glDeleteProgram(m.per_vertex.program);
+  const GLuint framebuffers[] = {m.ms_fbo, m.fbo, m.background_fbo};
+  glDeleteFramebuffers(3, framebuffers);
+  glDeleteTextures(1, &m.background_texture);
+  const GLuint buffers[] = {m.ms_colour, m.ms_depth, m.colour, m.depth};
+  glDeleteRenderbuffers(4, buffers);
   eglMakeCurrent(m.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(m.display, m.context);
   release_display();
@@ -352,6 +487,7 @@ OffscreenRenderer::~OffscreenRenderer() {
 
 int OffscreenRenderer::width() const { return impl_->width; }
 int OffscreenRenderer::height() const { return impl_->height; }
+int OffscreenRenderer::samples() const { return impl_->samples; }
 
 std::string OffscreenRenderer::renderer_name() const {
   eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context);
@@ -359,7 +495,31 @@ std::string OffscreenRenderer::renderer_name() const {
   return name ? name : "unknown";
 }
 
-void OffscreenRenderer::Impl::draw_background(const RenderStyle& style) {
+OffscreenRenderer::Impl::MeshProgram OffscreenRenderer::Impl::make_mesh_program(const std::string& vertex,
+                                                                               const std::string& fragment) {
+  MeshProgram m;
+  const GLuint p = m.program = link(vertex, fragment);
+  m.view_projection = glGetUniformLocation(p, "view_projection");
+  m.origin = glGetUniformLocation(p, "origin");
+  m.eye = glGetUniformLocation(p, "eye");
+  m.light_direction[0] = glGetUniformLocation(p, "light_direction[0]");
+  m.light_direction[1] = glGetUniformLocation(p, "light_direction[1]");
+  m.light_colour[0] = glGetUniformLocation(p, "light_colour[0]");
+  m.light_colour[1] = glGetUniformLocation(p, "light_colour[1]");
+  m.ambient = glGetUniformLocation(p, "ambient");
+  m.specular = glGetUniformLocation(p, "specular");
+  m.shininess = glGetUniformLocation(p, "shininess");
+  m.rim = glGetUniformLocation(p, "rim");
+  m.base = glGetUniformLocation(p, "base");
+  return m;
+}
+
+void OffscreenRenderer::Impl::prepare_background(const RenderStyle& style) {
+  if (has_background && background_top == style.water_top && background_bottom == style.water_bottom &&
+      background_shafts == style.light_shafts)
+    return;
+  glBindFramebuffer(GL_FRAMEBUFFER, background_fbo);
+  glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glUseProgram(background);
@@ -369,112 +529,206 @@ void OffscreenRenderer::Impl::draw_background(const RenderStyle& style) {
               static_cast<float>(style.water_bottom[1]), static_cast<float>(style.water_bottom[2]));
   glUniform1f(glGetUniformLocation(background, "shafts"), style.light_shafts ? 1.0f : 0.0f);
   glUniform1f(glGetUniformLocation(background, "aspect"), static_cast<float>(width) / static_cast<float>(height));
-  glBindVertexArray(vao);
+  glBindVertexArray(screen_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  has_background = true;
+  background_top = style.water_top;
+  background_bottom = style.water_bottom;
+  background_shafts = style.light_shafts;
+}
+
+/// The cached background into the draw framebuffer (bound): a copy for a single-sample target,
+/// a texel-fetch pass for a multisampled one; depth cleared.
+void OffscreenRenderer::Impl::draw_background() {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  if (samples == 1) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, background_fbo);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo);
+    return;
+  }
+  glUseProgram(copy);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, background_texture);
+  glBindVertexArray(screen_vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh) {
+std::array<std::pair<std::size_t, std::size_t>, 3> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
+                                                                                     Vec3 eye) {
   // Interleaved float position and normal; the vertex shader subtracts the camera target
   // (`origin`) before projecting.
-  vertex_data.resize(mesh.vertex_count() * 6);
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+  const std::size_t nv = mesh.vertex_count();
+  vertex_data.resize(nv * 6);
+  float* out = vertex_data.data();
+  for (std::size_t v = 0; v < nv; ++v) {
     const Vec3 p = mesh.positions[v], n = mesh.normals[v];
-    const float values[6] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
-                             static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)};
-    std::copy(values, values + 6, vertex_data.begin() + static_cast<long>(v * 6));
+    out[6 * v + 0] = static_cast<float>(p.x);
+    out[6 * v + 1] = static_cast<float>(p.y);
+    out[6 * v + 2] = static_cast<float>(p.z);
+    out[6 * v + 3] = static_cast<float>(n.x);
+    out[6 * v + 4] = static_cast<float>(n.y);
+    out[6 * v + 5] = static_cast<float>(n.z);
   }
+  // Draw order: tentacles, then the translucent umbrella's back faces, then its front faces, each
+  // in mesh order — what culling front faces and then back faces in two passes draws, in one pass.
+  // Facing as OpenGL decides it for a counter-clockwise-outside mesh: front when the eye is on the
+  // side the face normal points to.
+  std::size_t total = 0;
+  for (const geometry::MeshPart& part : mesh.parts) total += part.index_count;
+  index_data.resize(total);
+  std::size_t fill = 0;
+  std::array<std::pair<std::size_t, std::size_t>, 3> ranges{};
+  for (const geometry::MeshPart& part : mesh.parts) {
+    if (part.name != "tentacles") continue;
+    std::copy_n(mesh.indices.begin() + part.first_index, part.index_count, index_data.begin() + static_cast<long>(fill));
+    fill += part.index_count;
+  }
+  ranges[0] = {0, fill};
+  std::size_t front = index_data.size();  // front faces are collected from the end, then reversed
+  for (const geometry::MeshPart& part : mesh.parts) {
+    if (part.name == "tentacles") continue;
+    const std::uint32_t* idx = mesh.indices.data() + part.first_index;
+    for (std::uint32_t t = 0; t + 2 < part.index_count; t += 3) {
+      const Vec3 a = mesh.positions[idx[t]], b = mesh.positions[idx[t + 1]], c = mesh.positions[idx[t + 2]];
+      const double facing = geometry::dot(geometry::cross(b - a, c - a), eye - a);
+      if (facing < 0.0) {
+        std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(fill));
+        fill += 3;
+      } else if (facing > 0.0) {
+        front -= 3;
+        std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(front));
+      }  // edge-on: culled in both passes, not drawn
+    }
+  }
+  ranges[1] = {ranges[0].second, fill - ranges[0].second};
+  // Front faces lie reversed (by triangle) at the end; restore mesh order right after the back faces.
+  const std::size_t front_count = index_data.size() - front, front_triangles = front_count / 3;
+  for (std::size_t k = 0; k < front_triangles / 2; ++k) {
+    const auto a = index_data.begin() + static_cast<long>(front + 3 * k);
+    std::swap_ranges(a, a + 3, index_data.end() - static_cast<long>(3 * (k + 1)));
+  }
+  std::copy(index_data.begin() + static_cast<long>(front), index_data.end(), index_data.begin() + static_cast<long>(fill));
+  ranges[2] = {fill, front_count};
+  const std::size_t used = fill + front_count;
+
+  const std::size_t vbytes = vertex_data.size() * sizeof(float), ibytes = used * sizeof(std::uint32_t);
   glBindVertexArray(vao);
   glBindBuffer(GL_ARRAY_BUFFER, vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertex_data.size() * sizeof(float)), vertex_data.data(),
-               GL_STREAM_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-               mesh.indices.data(), GL_STREAM_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<const void*>(3 * sizeof(float)));
+  if (vbytes > vbo_bytes) {
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vbytes), vertex_data.data(), GL_STREAM_DRAW);
+    vbo_bytes = vbytes;
+  } else {
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vbytes), vertex_data.data());
+  }
+  if (ibytes > ibo_bytes) {
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(ibytes), index_data.data(), GL_STREAM_DRAW);
+    ibo_bytes = ibytes;
+  } else if (ibytes > 0) {
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(ibytes), index_data.data());
+  }
+  return ranges;
 }
 
 void OffscreenRenderer::Impl::set_mesh_uniforms(const Camera& camera, const RenderStyle& style) {
-  glUseProgram(shaded);
+  if (style.per_vertex_lighting && !per_vertex.program)
+    per_vertex = make_mesh_program(std::string(kGouraudVertexHead) + kLighting + kGouraudVertexMain, kGouraudFragment);
+  mesh_program = style.per_vertex_lighting ? &per_vertex : &per_pixel;
+  const MeshProgram& u = *mesh_program;
+  glUseProgram(u.program);
   const double distance = geometry::norm(camera.eye - camera.target);
   const Mat4 view = look_at(camera.eye - camera.target, Vec3{}, camera.up);
   const Mat4 projection = perspective(camera.fov_y_deg, static_cast<double>(width) / height, 0.02 * distance, 50.0 * distance);
   const Mat4 vp = multiply(projection, view);
-  glUniformMatrix4fv(glGetUniformLocation(shaded, "view_projection"), 1, GL_FALSE, vp.data());
-  auto vec3 = [&](const char* name, Vec3 v) {
-    glUniform3f(glGetUniformLocation(shaded, name), static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z));
-  };
-  vec3("origin", camera.target);
-  vec3("eye", camera.eye);
-  for (int i = 0; i < 2; ++i) {
-    const DirectionalLight& l = style.lights[static_cast<std::size_t>(i)];
-    const std::string k = "[" + std::to_string(i) + "]";
-    vec3(("light_direction" + k).c_str(), l.direction);
-    vec3(("light_colour" + k).c_str(), {l.colour[0], l.colour[1], l.colour[2]});
+  glUniformMatrix4fv(u.view_projection, 1, GL_FALSE, vp.data());
+  set_vec3(u.origin, camera.target);
+  set_vec3(u.eye, camera.eye);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const DirectionalLight& l = style.lights[i];
+    set_vec3(u.light_direction[i], l.direction);
+    set_vec3(u.light_colour[i], {l.colour[0], l.colour[1], l.colour[2]});
   }
-  glUniform1f(glGetUniformLocation(shaded, "ambient"), static_cast<float>(style.ambient));
-  glUniform1f(glGetUniformLocation(shaded, "specular"), static_cast<float>(style.specular));
-  glUniform1f(glGetUniformLocation(shaded, "shininess"), static_cast<float>(style.shininess));
-  glUniform1f(glGetUniformLocation(shaded, "rim"), static_cast<float>(style.rim));
+  glUniform1f(u.ambient, static_cast<float>(style.ambient));
+  glUniform1f(u.specular, static_cast<float>(style.specular));
+  glUniform1f(u.shininess, static_cast<float>(style.shininess));
+  glUniform1f(u.rim, static_cast<float>(style.rim));
 }
 
-void OffscreenRenderer::Impl::draw_part(const geometry::MeshPart& part, const std::array<double, 4>& c) {
-  glUniform4f(glGetUniformLocation(shaded, "base"), static_cast<float>(c[0]), static_cast<float>(c[1]),
-              static_cast<float>(c[2]), static_cast<float>(c[3]));
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.index_count), GL_UNSIGNED_INT,
-                 reinterpret_cast<const void*>(static_cast<std::uintptr_t>(part.first_index) * sizeof(std::uint32_t)));
+void OffscreenRenderer::Impl::draw_range(std::pair<std::size_t, std::size_t> range, const std::array<double, 4>& c) {
+  if (range.second == 0) return;
+  glUniform4f(mesh_program->base, static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]),
+              static_cast<float>(c[3]));
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(range.second), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(range.first * sizeof(std::uint32_t)));
+}
+
+void OffscreenRenderer::draw(const geometry::Mesh& mesh, const Camera& camera, const RenderStyle& style) {
+  Impl& m = *impl_;
+  m.make_current();
+  m.prepare_background(style);
+  glBindFramebuffer(GL_FRAMEBUFFER, m.draw_fbo);
+  glViewport(0, 0, m.width, m.height);
+  m.draw_background();
+
+  const auto ranges = m.upload(mesh, camera.eye);
+  m.set_mesh_uniforms(camera, style);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  // Tentacles first, writing depth; then the translucent umbrella without depth writes: its back
+  // faces, then its front faces (a closed shell blends correctly in that order from most views).
+  glDepthMask(GL_TRUE);
+  m.draw_range(ranges[0], style.tentacles);
+  glDepthMask(GL_FALSE);
+  m.draw_range(ranges[1], style.umbrella);
+  m.draw_range(ranges[2], style.umbrella);
+  glDepthMask(GL_TRUE);
+}
+
+void OffscreenRenderer::read_back(RgbImage& image) {
+  Impl& m = *impl_;
+  m.make_current();
+  if (m.samples > 1) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m.ms_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m.fbo);
+    glBlitFramebuffer(0, 0, m.width, m.height, 0, 0, m.width, m.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
+  const std::size_t w = static_cast<std::size_t>(m.width), h = static_cast<std::size_t>(m.height);
+  m.rgba.resize(w * h * 4);
+  glReadPixels(0, 0, m.width, m.height, GL_RGBA, GL_UNSIGNED_BYTE, m.rgba.data());
+  if (glGetError() != GL_NO_ERROR) throw RunError("OpenGL reported an error while rendering a frame");
+  if (image.width != m.width || image.height != m.height || image.pixels.size() != w * h * 3) {
+    image.width = m.width;
+    image.height = m.height;
+    image.pixels.resize(w * h * 3);
+  }
+  for (std::size_t y = 0; y < h; ++y) {  // OpenGL's first row is the bottom one
+    const std::uint8_t* src = m.rgba.data() + (h - 1 - y) * w * 4;
+    std::uint8_t* dst = image.pixels.data() + y * w * 3;
+    // RGBA → RGB: four bytes per pixel, each write's alpha overwritten by the next pixel's red.
+    for (std::size_t x = 0; x + 1 < w; ++x) std::memcpy(dst + 3 * x, src + 4 * x, 4);
+    std::memcpy(dst + 3 * (w - 1), src + 4 * (w - 1), 3);
+  }
+}
+
+void OffscreenRenderer::finish() {
+  Impl& m = *impl_;
+  m.make_current();
+  glFinish();
+}
+
+void OffscreenRenderer::render(const geometry::Mesh& mesh, const Camera& camera, const RenderStyle& style,
+                               RgbImage& image) {
+  draw(mesh, camera, style);
+  read_back(image);
 }
 
 RgbImage OffscreenRenderer::render(const geometry::Mesh& mesh, const Camera& camera, const RenderStyle& style) {
-  Impl& m = *impl_;
-  if (!eglMakeCurrent(m.display, EGL_NO_SURFACE, EGL_NO_SURFACE, m.context))
-    throw RunError("EGL cannot make the renderer's context current");
-  glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo);
-  glViewport(0, 0, m.width, m.height);
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  m.draw_background(style);
-
-  m.upload(mesh);
-  m.set_mesh_uniforms(camera, style);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  // Tentacles first, writing depth; then the translucent umbrella without depth writes: its back
-  // faces, then its front faces (a closed shell blends correctly in that order from most views).
-  for (const geometry::MeshPart& part : mesh.parts) {
-    if (part.name != "tentacles") continue;
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    m.draw_part(part, style.tentacles);
-  }
-  glDepthMask(GL_FALSE);
-  glEnable(GL_CULL_FACE);
-  for (GLenum culled : {GL_FRONT, GL_BACK}) {
-    glCullFace(culled);
-    for (const geometry::MeshPart& part : mesh.parts)
-      if (part.name != "tentacles") m.draw_part(part, style.umbrella);
-  }
-  glDisable(GL_CULL_FACE);
-  glDepthMask(GL_TRUE);
-
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, m.ms_fbo);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m.fbo);
-  glBlitFramebuffer(0, 0, m.width, m.height, 0, 0, m.width, m.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
-  m.rgba.resize(static_cast<std::size_t>(m.width) * m.height * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, m.width, m.height, GL_RGBA, GL_UNSIGNED_BYTE, m.rgba.data());
-  if (glGetError() != GL_NO_ERROR) throw RunError("OpenGL reported an error while rendering a frame");
-  RgbImage image(m.width, m.height);
-  for (int y = 0; y < m.height; ++y) {  // OpenGL's first row is the bottom one
-    const std::uint8_t* src = m.rgba.data() + static_cast<std::size_t>(m.height - 1 - y) * m.width * 4;
-    std::uint8_t* dst = image.pixels.data() + static_cast<std::size_t>(y) * m.width * 3;
-    for (int x = 0; x < m.width; ++x) std::copy(src + x * 4, src + x * 4 + 3, dst + x * 3);
-  }
+  RgbImage image;
+  render(mesh, camera, style, image);
   return image;
 }
 

@@ -15,8 +15,8 @@
 namespace jellysim::viewer {
 
 struct ViewerOptions {
-  int width_px = 1280;
-  int height_px = 720;
+  int width_px = 960;   // software GL keeps real time at this size (docs/viewer.md)
+  int height_px = 540;
   double target_fps = 30.0;        ///< frames are paced to this rate; 0: as fast as possible
   double speed = 1.0;              ///< simulated seconds per wall second wanted
   double min_fps = 10.0;           ///< the simulation may slow the frame rate down to this to keep up

@@ -204,5 +204,38 @@ TEST(Animation, SameTopologyThroughAContractionAndBadSettingsRejected) {
   EXPECT_THROW(build_animation(frames, s), InputError);  // topology changes
 }
 
+TEST(Extrapolation, BuildingIntoAReusedFrameGivesTheSameGeometry) {
+  // The interactive path (build into one FrameGeometry frame after frame) must equal a fresh build,
+  // also after the frame held another topology (more vertices, another tentacle count).
+  GeometrySettings big;
+  big.latitude_samples = 41;
+  big.disc_points = 36;
+  big.tentacle_count = 9;
+  GeometrySettings s;
+  s.latitude_samples = 21;
+  s.disc_points = 16;
+  s.tentacle_count = 5;
+  const auto slice = [](double contraction, double t) {
+    SyntheticBell spec;
+    spec.contraction = contraction;
+    spec.time_s = t;
+    return synthetic_bell(spec);
+  };
+  FrameGeometry reused;
+  GeometryBuilder(big, 0.028).build(slice(0.2, 0.5), reused);
+  const GeometryBuilder builder(s, 0.028);
+  for (double c : {0.0, 0.6, 1.0}) {
+    builder.build(slice(c, 1.0 + c), reused);
+    const FrameGeometry fresh = builder.build(slice(c, 1.0 + c));
+    EXPECT_EQ(reused.mesh.positions, fresh.mesh.positions);
+    EXPECT_EQ(reused.mesh.normals, fresh.mesh.normals);
+    EXPECT_EQ(reused.mesh.indices, fresh.mesh.indices);
+    EXPECT_TRUE(same_topology(reused.mesh, fresh.mesh));
+    EXPECT_EQ(reused.tentacle_lines, fresh.tentacle_lines);
+    EXPECT_EQ(reused.umbrella.rows, fresh.umbrella.rows);
+    EXPECT_EQ(reused.time_s, fresh.time_s);
+  }
+}
+
 }  // namespace
 }  // namespace jellysim::geometry

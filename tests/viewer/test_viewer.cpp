@@ -33,7 +33,7 @@ jellysim::testing::CliResult run_viewer_headless(const std::string& args) {
   return r;
 }
 
-// The default 1280 × 720 layout: controls 330 px on the right, the 2D panel in the left half of
+// The 1280 × 720 layout the scripted tests ask for: controls 330 px on the right, the 2D panel in the left half of
 // the rest (475 px), the tank fitted into it with a 4 px margin (docs/viewer.md).
 constexpr double kScalePxPerM = (475.0 - 8.0) / 0.8;
 constexpr double kTankTopPx = 4.0 + 0.5 * (712.0 - 467.0);
@@ -63,7 +63,7 @@ TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
                              "40 drag 100 200 160 200 5  # stir the water\n"
                              "55 mark running\n";
   std::ofstream(dir / "input.txt") << script;
-  const auto r = run_viewer_headless("--frames 60 --fps 0 --script " + (dir / "input.txt").string() +
+  const auto r = run_viewer_headless("--width 1280 --height 720 --frames 60 --fps 0 --script " + (dir / "input.txt").string() +
                                      " --screenshot " + (dir / "shot.png").string() + " --stats " +
                                      (dir / "stats.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -131,7 +131,7 @@ TEST(Viewer, DraggingAnObstacleMovesIt) {
   const std::string drag = "2 pause; 3 drag " + std::to_string(screen_x(0.2)) + " " + std::to_string(screen_y(0.6)) +
                            " " + std::to_string(screen_x(0.3)) + " " + std::to_string(screen_y(0.55)) +
                            " 5; 10 mark moved";
-  const auto r = run_viewer_headless((dir / "scene.toml").string() + " --frames 12 --fps 0 --inject \"" + drag +
+  const auto r = run_viewer_headless((dir / "scene.toml").string() + " --width 1280 --height 720 --frames 12 --fps 0 --inject \"" + drag +
                                      "\" --stats " + (dir / "stats.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto stats = nlohmann::json::parse(read_text_file(dir / "stats.json"));
