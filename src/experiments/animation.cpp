@@ -28,8 +28,15 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     if (!rec.metrics.empty()) write_swim_plots(out, rec.metrics, "jellyfish");
     nlohmann::ordered_json figures = swim_figures(settings, rec);
     const bool terminal = ctx.progress && ::isatty(STDOUT_FILENO);
+    // Every jellyfish in one animation; individual j's noise seed is render.noise.seed plus its
+    // noise_seed − 1 (docs/scenes.md), so the first one keeps render.noise.seed.
+    std::vector<std::vector<jellyfish::SliceFrame>> school{rec.frames};
+    school.insert(school.end(), rec.others.begin(), rec.others.end());
+    std::vector<std::uint64_t> seeds;
+    for (const jellyfish::JellyfishSpec& j : settings.school)
+      seeds.push_back(pipeline.geometry.noise.seed + static_cast<std::uint64_t>(j.noise_seed) - 1);
     const render::AnimationOutputs anim = render::write_animation_outputs(
-        rec.frames, pipeline, out, [terminal](std::size_t done, std::size_t total) {
+        school, seeds, pipeline, out, [terminal](std::size_t done, std::size_t total) {
           if (!terminal) return;
           std::printf("\r  rendering frame %zu / %zu   ", done, total);
           if (done == total) std::printf("\n");

@@ -104,7 +104,7 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::Ta
   j.steer_gain = c.number("jellyfish.steer_gain", io::Range::non_negative());
   j.steer_max_bend_rad = c.number("jellyfish.steer_max_bend_deg", io::Range::closed(0.0, 90.0)) * kDegree;
   j.steer_damping_cycles = c.number("jellyfish.steer_damping", io::Range::non_negative());
-  j.noise_seed = static_cast<int>(c.integer("jellyfish.noise_seed", 0, 2147483647));
+  j.noise_seed = static_cast<int>(c.integer("jellyfish.noise_seed", 1, 2147483647));
   try {
     jellyfish::validate(j);
   } catch (const std::invalid_argument& e) {

@@ -79,8 +79,9 @@ class FollowCamera {
     const Vec3 size = b.max - b.min;
     extent_ = std::max({size.x, size.y, size.z});
   }
-  Camera next(const geometry::FrameGeometry& g) {
-    const Vec3 goal = umbrella_centre(g) - Vec3{0.0, 0.15 * extent_, 0.0};
+  /// `centre`: the middle of the umbrella(s) this frame.
+  Camera next(Vec3 centre) {
+    const Vec3 goal = centre - Vec3{0.0, 0.15 * extent_, 0.0};
     target_ = started_ ? target_ + settings_.camera_follow * (goal - target_) : goal;
     started_ = true;
     return camera_looking_at(target_, view_direction(settings_), settings_.camera_distance * extent_,
@@ -217,8 +218,57 @@ nlohmann::ordered_json AnimationOutputs::figures() const {
 AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame>& frames,
                                          const PipelineSettings& s, const io::OutputDir& out,
                                          const FrameProgress& progress) {
-  if (frames.empty()) throw InputError("no slice frames to render");
-  const geometry::GeometryBuilder builder(s.geometry, geometry::resolve_noise_length(s.geometry.noise, frames.front()));
+  return write_animation_outputs(std::vector<std::vector<jellyfish::SliceFrame>>{frames},
+                                 std::vector<std::uint64_t>{s.geometry.noise.seed}, s, out, progress);
+}
+
+namespace {
+
+/// One mesh for several jellyfish: every umbrella first (so part "umbrella" still starts at vertex
+/// 0 and is one index range), then every tentacle tube. The topology is fixed frame to frame.
+void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::Mesh& merged) {
+  merged.positions.clear();
+  merged.normals.clear();
+  merged.indices.clear();
+  merged.parts.clear();
+  for (const char* name : {"umbrella", "tentacles"}) {
+    const auto first_index = static_cast<std::uint32_t>(merged.indices.size());
+    for (const geometry::FrameGeometry& g : parts) {
+      const geometry::MeshPart* part = g.mesh.part(name);
+      if (part == nullptr) continue;
+      // Copy the vertices this part uses (a contiguous block in each jellyfish's mesh).
+      std::uint32_t lo = UINT32_MAX, hi = 0;
+      for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k) {
+        lo = std::min(lo, g.mesh.indices[k]);
+        hi = std::max(hi, g.mesh.indices[k]);
+      }
+      const auto offset = static_cast<std::uint32_t>(merged.positions.size());
+      merged.positions.insert(merged.positions.end(), g.mesh.positions.begin() + lo, g.mesh.positions.begin() + hi + 1);
+      merged.normals.insert(merged.normals.end(), g.mesh.normals.begin() + lo, g.mesh.normals.begin() + hi + 1);
+      for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k)
+        merged.indices.push_back(g.mesh.indices[k] - lo + offset);
+    }
+    const auto count = static_cast<std::uint32_t>(merged.indices.size()) - first_index;
+    if (count > 0) merged.parts.push_back({name, first_index, count});
+  }
+}
+
+}  // namespace
+
+AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
+                                         const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
+                                         const io::OutputDir& out, const FrameProgress& progress) {
+  if (school.empty() || school.front().empty()) throw InputError("no slice frames to render");
+  if (seeds.size() != school.size()) throw InputError("one noise seed per jellyfish is needed");
+  const std::vector<jellyfish::SliceFrame>& frames = school.front();
+  for (const auto& series : school)
+    if (series.size() != frames.size()) throw InputError("every jellyfish needs the same number of recorded frames");
+  std::vector<geometry::GeometryBuilder> builders;
+  for (std::size_t j = 0; j < school.size(); ++j) {
+    geometry::GeometrySettings gs = s.geometry;
+    gs.noise.seed = seeds[j];
+    builders.emplace_back(gs, geometry::resolve_noise_length(gs.noise, school[j].front()));
+  }
   const bool pixels = s.png_frames || s.video;
   std::unique_ptr<OffscreenRenderer> renderer;
   if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
@@ -233,14 +283,24 @@ AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame
   std::unique_ptr<FollowCamera> camera;
   double geometry_s = 0.0, render_s = 0.0;
   RgbImage image;  // reused frame to frame
+  std::vector<geometry::FrameGeometry> parts(school.size());
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto t0 = Clock::now();
-    geometry::FrameGeometry g = builder.build(frames[k]);
+    for (std::size_t j = 0; j < school.size(); ++j) builders[j].build(school[j][k], parts[j]);
+    geometry::FrameGeometry g;
+    if (school.size() == 1) {
+      g = parts.front();
+    } else {
+      g.time_s = parts.front().time_s;
+      merge_meshes(parts, g.mesh);
+    }
     geometry_s += seconds_since(t0);
     if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
       throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
     if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);
-    const Camera view = camera->next(g);
+    Vec3 centre{};
+    for (const auto& part : parts) centre = centre + (1.0 / static_cast<double>(parts.size())) * umbrella_centre(part);
+    const Camera view = camera->next(centre);
     if (pixels) {
       t0 = Clock::now();
       renderer->render(g.mesh, view, s.style, image);

@@ -3,6 +3,7 @@
 // an animated .glb, per-frame OBJ/PLY meshes and a small HTML viewer; and the Figure 8.19 stages
 // picture. The only place where geometry, meshes and pixels meet; physics never calls into it.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -70,6 +71,14 @@ struct AnimationOutputs {
 AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame>& frames,
                                          const PipelineSettings& settings, const io::OutputDir& out,
                                          const FrameProgress& progress = {});
+
+/// The same for several jellyfish in one scene: school[j] are the frames of jellyfish j (all the
+/// same count), seeds[j] its noise individual. Every frame's meshes are merged into one (all
+/// umbrellas, then all tentacles), so the .glb and meshes hold the whole school and the camera
+/// follows the middle of the umbrellas.
+AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
+                                         const std::vector<std::uint64_t>& seeds, const PipelineSettings& settings,
+                                         const io::OutputDir& out, const FrameProgress& progress = {});
 
 /// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,
 /// structural noise, Perlin noise, compression noise, all noises; columns expanded, contracted.

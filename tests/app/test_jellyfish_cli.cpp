@@ -82,6 +82,26 @@ TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
   fs::remove_all(dir);
 }
 
+// A scene with two jellyfish (and an obstacle, which is not drawn in 3D) renders both: the
+// animation's mesh holds twice the vertices of one jellyfish, and there are metrics for each.
+TEST(JellyfishCli, RunRendersEveryJellyfishOfTheScene) {
+  const fs::path dir = fresh("run_two"), one = fresh("run_one");
+  const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
+                            "--set render.viewer=false --out ";
+  const Result r = run_cli("run " + std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml" + quick + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Result r1 = run_cli("run" + quick + one.string());
+  ASSERT_EQ(r1.exit_code, 0) << r1.output;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  const auto s1 = nlohmann::json::parse(slurp(one / "summary.json"));
+  EXPECT_EQ(s["jellyfish_count"].get<int>(), 2);
+  EXPECT_EQ(s["animation"]["vertices_per_frame"].get<int>(), 2 * s1["animation"]["vertices_per_frame"].get<int>());
+  EXPECT_TRUE(fs::exists(dir / "metrics_jellyfish_2.csv"));
+  EXPECT_TRUE(fs::exists(dir / "jellyfish.glb"));
+  fs::remove_all(dir);
+  fs::remove_all(one);
+}
+
 TEST(JellyfishCli, OvalMembraneLosesLessAreaThanTheThesis) {
   const fs::path dir = fresh("oval");
   const Result r = run_cli("experiment oval-membrane --quiet --set refinement.cells=[30,60] --out " + dir.string());
