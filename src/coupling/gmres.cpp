@@ -22,10 +22,15 @@ void givens(double a, double b, double& c, double& s) {
 
 }  // namespace
 
-GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
-                  int max_iterations, int restart) {
+namespace {
+
+/// The GMRES cycles. `coefficients`, when given: x starts at zero, the first residual is b itself,
+/// and a first cycle that converges returns its coefficients without a final residual check.
+GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                      int max_iterations, int restart, Eigen::VectorXd* coefficients) {
   GmresReport report;
   const double b_norm = b.norm();
+  if (coefficients) coefficients->resize(0);
   if (b_norm == 0.0) {
     x.setZero(b.size());
     report.converged = true;
@@ -36,9 +41,15 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
   std::vector<Eigen::VectorXd> basis(static_cast<std::size_t>(m + 1), Eigen::VectorXd(n));
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(m + 1, m);
   Eigen::VectorXd cs(m), sn(m), g(m + 1), w(n), r(n);
+  bool first_cycle = true;
   while (true) {
-    apply(x, w);
-    r = b - w;
+    if (coefficients && first_cycle) {
+      x.setZero(n);
+      r = b;
+    } else {
+      apply(x, w);
+      r = b - w;
+    }
     double beta = r.norm();
     report.relative_residual = beta / b_norm;
     if (report.relative_residual <= tolerance) {
@@ -46,10 +57,15 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
       return report;
     }
     if (report.iterations >= max_iterations) return report;
+    if (!first_cycle) {
+      report.restarted = true;
+      if (coefficients) coefficients->resize(0);
+    }
     basis[0] = r / beta;
     g.setZero();
     g[0] = beta;
     int k = 0;
+    bool converged = false;
     for (; k < m && report.iterations < max_iterations; ++k) {
       apply(basis[static_cast<std::size_t>(k)], w);
       ++report.iterations;
@@ -70,6 +86,7 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
       g[k + 1] = -sn[k] * g[k];
       g[k] = cs[k] * g[k];
       if (std::abs(g[k + 1]) <= tolerance * b_norm || h(k, k) == 0.0) {
+        converged = std::abs(g[k + 1]) <= tolerance * b_norm;
         ++k;
         break;
       }
@@ -77,7 +94,27 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
     // Back-substitute the k × k triangular system and update x.
     Eigen::VectorXd y = h.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
     for (int i = 0; i < k; ++i) x += y[i] * basis[static_cast<std::size_t>(i)];
+    if (coefficients && first_cycle && converged) {
+      // x = Σ y_i v_i: the caller combines its by-products with these weights.
+      *coefficients = y;
+      report.relative_residual = std::abs(g[k]) / b_norm;
+      report.converged = true;
+      return report;
+    }
+    first_cycle = false;
   }
+}
+
+}  // namespace
+
+GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                  int max_iterations, int restart) {
+  return run_gmres(apply, b, x, tolerance, max_iterations, restart, nullptr);
+}
+
+GmresReport gmres_from_zero(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                            Eigen::VectorXd& coefficients, double tolerance, int max_iterations, int restart) {
+  return run_gmres(apply, b, x, tolerance, max_iterations, restart, &coefficients);
 }
 
 }  // namespace jellysim::coupling

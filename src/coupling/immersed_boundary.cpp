@@ -251,30 +251,52 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
     for (std::size_t p = 0; p < x.size(); ++p)
       if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + dt_s) - x[p]) / dt_s;
 
-  // 2. Backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ.
+  // 2. Backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ, i.e.
+  //    A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From the last step's increment x0,
+  //    the correction e = ΔX − x0 solves A e = Δt U_L − x0 + Δt² R (F + K x0): one response for the
+  //    right-hand side, and GMRES from zero.
+  const double dt2 = dt_s * dt_s;
   const Eigen::VectorXd fluid_velocity = flatten(velocity_);
   const Eigen::VectorXd f0 = flatten(force_);
+  const Eigen::VectorXd x0 = last_increment_.size() == f0.size() ? last_increment_ : Eigen::VectorXd(dt_s * fluid_velocity);
   Eigen::VectorXd response;
-  apply_response(f0, response);
-  const Eigen::VectorXd rhs = dt_s * fluid_velocity + dt_s * dt_s * response;
-  const double dt2 = dt_s * dt_s;
+  apply_response(f0 + stiffness * x0, response);
+  base_field_ = scratch_.velocity;  // P S (F + K x0) / ρ
+  const Eigen::VectorXd rhs = dt_s * fluid_velocity - x0 + dt2 * response;
+  // Each operator application spreads K v_k and projects it; keep those fields, so that the
+  //    end-of-step force field P S K e is their combination with GMRES's coefficients.
+  std::size_t applied = 0;
   LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    Eigen::VectorXd kv = stiffness * in;
     Eigen::VectorXd rkv;
-    apply_response(kv, rkv);
+    apply_response(stiffness * in, rkv);
+    if (applied >= basis_fields_.size()) basis_fields_.push_back(scratch_.velocity);
+    else basis_fields_[applied] = scratch_.velocity;
+    ++applied;
     out = in - dt2 * rkv;
   };
-  Eigen::VectorXd dx = last_increment_.size() == rhs.size() ? last_increment_ : Eigen::VectorXd(rhs);
-  report.krylov = gmres(op, rhs, dx, settings_.krylov_tolerance, settings_.krylov_max_iterations);
+  Eigen::VectorXd correction, coefficients;
+  report.krylov = gmres_from_zero(op, rhs, correction, coefficients, settings_.krylov_tolerance,
+                                  settings_.krylov_max_iterations);
+  const Eigen::VectorXd dx = x0 + correction;
   last_increment_ = dx;
 
   // 3. Apply the end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ.
-  const Eigen::VectorXd f1 = f0 + stiffness * dx;
-  unflatten(f1, work_);
-  project_spread_forces(work_);
+  fluid::Velocity& field = base_field_;
+  if (!report.krylov.restarted && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
+    for (Eigen::Index k = 0; k < coefficients.size(); ++k) {
+      const fluid::Velocity& g = basis_fields_[static_cast<std::size_t>(k)];
+      const double c = coefficients[k];
+      for (std::size_t i = 0; i < field.u.raw().size(); ++i) field.u.raw()[i] += c * g.u.raw()[i];
+      for (std::size_t i = 0; i < field.v.raw().size(); ++i) field.v.raw()[i] += c * g.v.raw()[i];
+    }
+  } else {  // GMRES restarted: project the end-of-step forces afresh
+    unflatten(f0 + stiffness * dx, work_);
+    project_spread_forces(work_);
+    field = scratch_.velocity;
+  }
   fluid::Velocity& u = fluid_.state().velocity;
-  for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += dt_s * scratch_.velocity.u.raw()[k];
-  for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += dt_s * scratch_.velocity.v.raw()[k];
+  for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += dt_s * field.u.raw()[k];
+  for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += dt_s * field.v.raw()[k];
   fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
   move_markers_with_fluid(dt_s);
   return report;

@@ -104,6 +104,8 @@ class ImmersedBoundary {
   fluid::Boundaries homogeneous_;
   std::vector<Vec2> force_, velocity_, work_;
   Eigen::VectorXd last_increment_;
+  fluid::Velocity base_field_;                 ///< P S (F + K x0) / ρ of the current step
+  std::vector<fluid::Velocity> basis_fields_;  ///< P S K v_k / ρ for GMRES's basis vectors v_k
   std::vector<char> is_target_;  ///< pinned or prescribed points: Peskin's target points
   bool has_targets_ = false;
 };

@@ -49,5 +49,34 @@ TEST(Gmres, SolvesASmallNonsymmetricSystem) {
   EXPECT_LT((a * x - b).norm(), 1e-11);
 }
 
+// GMRES from zero hands back the weights of its basis vectors: the solution is their combination
+// (what the semi-implicit coupling uses to build the end-of-step force field from kept by-products),
+// it solves the system, and it needs one operator application per iteration and no more.
+TEST(Gmres, FromZeroReturnsTheSolutionAsACombinationOfTheVectorsItApplied) {
+  const int n = 12;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) a(i, j) += 0.3 * std::sin(1.0 + 3.0 * i + 7.0 * j) / n;  // nonsymmetric, well conditioned
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.5 * i);
+  std::vector<Eigen::VectorXd> applied;
+  Eigen::VectorXd x, coefficients;
+  const GmresReport r = gmres_from_zero(
+      [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+        applied.push_back(in);
+        out = a * in;
+      },
+      b, x, coefficients, 1e-12, 100);
+  ASSERT_TRUE(r.converged);
+  EXPECT_FALSE(r.restarted);
+  EXPECT_EQ(static_cast<int>(applied.size()), r.iterations);
+  ASSERT_EQ(coefficients.size(), r.iterations);
+  Eigen::VectorXd combined = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < coefficients.size(); ++k) combined += coefficients[k] * applied[static_cast<std::size_t>(k)];
+  EXPECT_LT((combined - x).norm(), 1e-13 * x.norm());
+  EXPECT_LT((a * x - b).norm(), 1e-11 * b.norm());
+  EXPECT_LT(r.relative_residual, 1e-12);
+}
+
 }  // namespace
 }  // namespace jellysim::coupling
