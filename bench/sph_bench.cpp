@@ -12,6 +12,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <string>
 
 namespace {
 
@@ -62,26 +63,81 @@ sph::Scene larva_scene(int threads) {
   return s;
 }
 
-void BM_MosquitoLarva(benchmark::State& state) {
+/// Dormand–Prince with the experiment's tolerances (1e-4 + 1e-3 |y|) over `duration` seconds.
+sph::RunSettings larva_settings(double duration) {
   sph::RunSettings rs;
   rs.time.integrator = "dopri5";
   rs.time.adaptive = true;
   rs.time.dt = 1e-3;
   rs.time.tolerances.atol = 1e-4;
   rs.time.tolerances.rtol = 1e-3;
-  rs.time.duration = 1.0;
-  rs.time.frame_interval = 1.0;
+  rs.time.duration = duration;
+  rs.time.frame_interval = duration;
+  return rs;
+}
+
+std::string keep_going(double, const sph::Scene&, const sph::CoupledSystem&) { return {}; }
+
+void BM_MosquitoLarva(benchmark::State& state) {
+  const sph::RunSettings rs = larva_settings(1.0);
   std::int64_t steps = 0;
   for (auto _ : state) {
     state.PauseTiming();
     sph::Scene s = larva_scene(static_cast<int>(state.range(0)));
     state.ResumeTiming();
-    const sph::RunResult r = sph::run(s, rs, [](double, const sph::Scene&, const sph::CoupledSystem&) { return std::string(); });
+    const sph::RunResult r = sph::run(s, rs, keep_going);
     steps = r.statistics.steps;
     benchmark::DoNotOptimize(s.position.data());
   }
   state.counters["steps"] = static_cast<double>(steps);
 }
 BENCHMARK(BM_MosquitoLarva)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+// One thread against two on a developed larva state (docs/sph.md, "Two cores"), in one process.
+// The state is the scene after 3 s, computed once (the same for any thread count; results are
+// bit-identical for 1 and 2 threads, only the time differs).
+sph::Scene developed_scene(int threads) {
+  static const sph::Scene developed = [] {
+    sph::Scene s = larva_scene(1);
+    sph::run(s, larva_settings(3.0), keep_going);
+    return s;
+  }();
+  sph::Scene s = developed;
+  s.threads = threads;
+  return s;
+}
+
+/// One evaluation of the whole right-hand side y' = f(t, y): SPH forces in the parallel region,
+/// muscles and springs, packing.
+void BM_SphLarvaDerivative(benchmark::State& state) {
+  sph::Scene scene = developed_scene(static_cast<int>(state.range(0)));
+  const sph::CoupledSystem system(scene);
+  const ode::Vector y = system.pack_state();
+  ode::Vector dydt(y.size());
+  for (auto _ : state) {
+    system.derivative(1.0, y, dydt);
+    benchmark::DoNotOptimize(dydt.data());
+  }
+  state.counters["evals_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SphLarvaDerivative)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+/// 1 s of the scene with Dormand–Prince and the collision pass, continued from the developed state.
+void BM_SphLarvaRun(benchmark::State& state) {
+  const sph::RunSettings rs = larva_settings(1.0);
+  std::int64_t steps = 0, evaluations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    sph::Scene s = developed_scene(static_cast<int>(state.range(0)));
+    state.ResumeTiming();
+    const sph::RunResult r = sph::run(s, rs, keep_going);
+    steps = r.statistics.steps;
+    evaluations = r.statistics.function_evaluations;
+    benchmark::DoNotOptimize(s.position.data());
+  }
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["evaluations"] = static_cast<double>(evaluations);
+}
+BENCHMARK(BM_SphLarvaRun)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 
 }  // namespace

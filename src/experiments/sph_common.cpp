@@ -22,11 +22,8 @@ void check_time(const sph::RunSettings& s) {
 
 sph::RunSettings read_run_settings(const io::Config& c) {
   sph::RunSettings s;
-  std::vector<std::string> explicit_methods;
-  for (const std::string& name : ode::integrator_names()) {
-    if (name != "backward-euler") explicit_methods.push_back(name);  // no analytic Jacobian for SPH
-  }
-  s.time.integrator = c.choice("time.integrator", explicit_methods);
+  // Every integrator; backward Euler runs Jacobian-free (sph::JacobianFreeBackwardEuler).
+  s.time.integrator = c.choice("time.integrator", ode::integrator_names());
   s.time.dt = c.number("time.dt", io::Range::positive());
   s.time.adaptive = c.boolean("time.adaptive");
   s.time.tolerances.atol = c.number("time.atol", io::Range::positive());
@@ -56,7 +53,7 @@ elastic::BarSpec read_bar(const io::Config& c) {
 void read_collision(const io::Config& c, sph::Scene& scene) {
   scene.collision.separation_m = c.number("collision.separation", io::Range{0.0, 1.0, true, false});
   scene.collision.trap_radius_m = c.number("collision.trap_radius", io::Range::closed(0.0, 1.0));
-  scene.threads = static_cast<int>(c.integer("run.threads", 1, 64));
+  scene.threads = static_cast<int>(c.integer("run.threads", 0, 64));  // 0: one per core
 }
 
 sph::SphParameters read_fluid_parameters(const io::Config& c) {
@@ -209,6 +206,8 @@ nlohmann::ordered_json run_figures(const sph::RunResult& r, double wall_seconds,
   j["trapped_particles"] = r.collisions.trapped;
   j["wall_collisions"] = r.collisions.wall_collisions;
   if (std::isfinite(r.boundary_width_m)) j["boundary_width"] = r.boundary_width_m;
+  j["threads"] = r.threads;
+  j["parallel_evaluations"] = r.parallel_evaluations;  // of function_evaluations (SPH ones), see docs/sph.md
   return j;
 }
 

@@ -18,7 +18,7 @@ namespace jellysim::experiments::sph_common {
 sph::RunSettings read_run_settings(const io::Config& c);
 /// [bar] as in swinging-bar (length, width, segments, point_mass, stiffness, pivot, gravity).
 elastic::BarSpec read_bar(const io::Config& c);
-/// [collision] separation, trap_radius; run.threads.
+/// [collision] separation, trap_radius; run.threads (0: one per core).
 void read_collision(const io::Config& c, sph::Scene& scene);
 /// [fluid] smoothing_radius, rest_density, gas_constant, viscosity.
 sph::SphParameters read_fluid_parameters(const io::Config& c);

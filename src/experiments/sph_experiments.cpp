@@ -62,14 +62,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_wall(const Context
       }
       return std::string();
     }, ctx.progress);
-    const double wall = seconds_since(start);
+    const double wall = seconds_since(start), cpu = cpu_seconds() - cpu0;  // the run only, not the outputs
     write_frames_csv(out, frames);
     const double centre = contact >= 0.0 ? contact : rs.time.duration / 2.0;
     DrawOptions d;
     d.decor = {{Vec2{-0.55, floor}, Vec2{0.55, floor}}};
     write_strip(out, "bar_hits_wall.png", "bar hits a static wall", *scene, frames, centre - 0.5 * o.window_s,
                 centre + 0.5 * o.window_s, o.strip_frames, d);
-    nlohmann::ordered_json f = run_figures(r, wall, cpu_seconds() - cpu0);
+    nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["floor_y"] = floor;
     f["lowest_point_y"] = lowest;
     f["first_contact_time"] = contact;
@@ -109,12 +109,12 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_particle(const Con
       }
       return std::string();
     }, ctx.progress);
-    const double wall = seconds_since(start);
+    const double wall = seconds_since(start), cpu = cpu_seconds() - cpu0;  // the run only, not the outputs
     write_frames_csv(out, frames);
     const double centre = contact >= 0.0 ? contact : rs.time.duration / 2.0;
     write_strip(out, "bar_hits_particle.png", "bar hits a point mass", *scene, frames, centre - 0.5 * o.window_s,
                 centre + 0.5 * o.window_s, o.strip_frames, {});
-    nlohmann::ordered_json f = run_figures(r, wall, cpu_seconds() - cpu0);
+    nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["first_collision_time"] = contact;
     f["particle_velocity_before"] = {before.x, before.y};
     f["particle_velocity_after"] = {after.x, after.y};

@@ -69,13 +69,13 @@ std::function<Outcome(const io::OutputDir&)> prepare_sph_stream(const Context& c
       frames.push_back(snapshot(t, s));
       return std::string();
     }, ctx.progress);
-    const double wall = seconds_since(start);
+    const double wall = seconds_since(start), cpu = cpu_seconds() - cpu0;  // the run only, not the outputs
     write_frames_csv(out, frames);
     DrawOptions d;
     d.decor = box_segments(setup->lo, setup->hi);
     write_strip(out, "sph_stream.png", "SPH stream onto the bar", setup->scene, frames, 0.0, setup->run.time.duration,
                 setup->strip_frames, d);
-    nlohmann::ordered_json f = run_figures(r, wall, cpu_seconds() - cpu0);
+    nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["particles"] = setup->scene.position.size();
     f["frames_per_wall_second"] = wall > 0.0 ? static_cast<double>(frames.size()) / wall : 0.0;
     write_summary(out, "sph-stream", ctx.config, f, r.failure);
@@ -123,7 +123,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_mosquito_larva(const Contex
       frames.push_back(snapshot(t, s));
       return std::string();
     }, ctx.progress);
-    const double wall = seconds_since(start);
+    const double wall = seconds_since(start), cpu = cpu_seconds() - cpu0;  // the run only, not the outputs
     write_frames_csv(out, frames);
     DrawOptions d;
     d.decor = box_segments(setup->lo, setup->hi);
@@ -131,12 +131,11 @@ std::function<Outcome(const io::OutputDir&)> prepare_mosquito_larva(const Contex
     const double t0 = std::min(setup->strip_start, setup->run.time.duration);
     const double t1 = std::min(t0 + setup->strip_frames * setup->run.time.frame_interval, setup->run.time.duration);
     write_strip(out, "mosquito_larva.png", "mosquito larva in SPH fluid", scene, frames, t0, t1, setup->strip_frames, d);
-    nlohmann::ordered_json f = run_figures(r, wall, cpu_seconds() - cpu0);
+    nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["fluid_particles"] = scene.fluid_count;
     f["particle_mass"] = setup->larva.mass.mass_kg;
     f["particle_mass_eq_5_21"] = setup->larva.mass.initial_guess_kg;
     f["mass_bisection_iterations"] = setup->larva.mass.iterations;
-    f["threads"] = scene.threads;
     const Vec2 c1 = body_centre(scene.body.points.position);
     f["larva_displacement"] = {c1.x - c0.x, c1.y - c0.y};
     write_summary(out, "mosquito-larva", ctx.config, f, r.failure);
@@ -155,11 +154,7 @@ struct CostSetup {
 
 CostSetup read_cost(const io::Config& c) {
   CostSetup s{c, read_run_settings(c), c.numbers("study.gas_constants", io::Range::positive()), {}, {}};
-  std::vector<std::string> methods;
-  for (const std::string& name : ode::integrator_names()) {
-    if (name != "backward-euler") methods.push_back(name);
-  }
-  s.integrators = c.choices("study.integrators", methods);
+  s.integrators = c.choices("study.integrators", ode::integrator_names());
   s.controls = c.choices("study.error_controls", {"embedded", "step-doubling"});
   s.run.time.adaptive = true;
   for (double k : s.gas_constants) build_larva_scene(c, k);  // validates every configuration up front
@@ -177,7 +172,7 @@ std::vector<CostRow> run_cost_study(const CostSetup& s, const sim::ProgressCallb
   for (const std::string& method : s.integrators) {
     const bool embedded = ode::make_integrator(method)->has_embedded_pair();
     for (const std::string& control : s.controls) {
-      if (control == "embedded" && !embedded) continue;  // FE and PC have no pair: step doubling only
+      if (control == "embedded" && !embedded) continue;  // FE, PC and BE have no pair: step doubling only
       for (double kappa : s.gas_constants) {
         LarvaScene larva = build_larva_scene(s.config, kappa);
         sph::RunSettings rs = s.run;
@@ -200,7 +195,7 @@ std::vector<CostRow> run_cost_study(const CostSetup& s, const sim::ProgressCallb
 
 std::string short_name(const std::string& method, const std::string& control) {
   const std::string m = method == "forward-euler" ? "FE" : method == "predictor-corrector" ? "PC"
-                        : method == "dopri5" ? "DP" : method == "rk2" ? "RK2" : method;
+                        : method == "dopri5" ? "DP" : method == "rk2" ? "RK2" : method == "backward-euler" ? "BE" : method;
   return m + (control == "embedded" ? " EP" : " SD");
 }
 

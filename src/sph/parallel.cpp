@@ -1,11 +1,48 @@
 #include "sph/parallel.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 namespace jellysim::sph {
 
 namespace {
-constexpr int kSpinIterations = 20000;  ///< ~tens of microseconds before a helper goes to sleep
+
+using Clock = std::chrono::steady_clock;
+/// A helper spins this long for the next evaluation before it sleeps (an RK step asks for its
+/// stages a few microseconds apart; between accepted steps come the collision pass and the
+/// controller, tens of microseconds).
+constexpr auto kIdleSpin = std::chrono::microseconds(200);
+/// A barrier spins this long before it sleeps (phases are balanced, so the partner is usually
+/// microseconds away unless the machine has descheduled it).
+constexpr auto kBarrierSpin = std::chrono::microseconds(50);
+
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+}  // namespace
+
+void PathChooser::record(double seconds) {
+  if (in_trial()) (position_ % 2 == 0 ? parallel_time_ : serial_time_) += seconds;
+  if (++position_ < period_) return;
+  parallel_wins_ = parallel_time_ <= serial_time_;
+  position_ = 0;
+  parallel_time_ = serial_time_ = 0.0;
+}
+
+int resolve_threads(int threads) {
+  if (threads >= 1) return threads;
+  const unsigned cores = std::thread::hardware_concurrency();
+  return static_cast<int>(std::clamp<unsigned>(cores, 1, 64));
 }
 
 WorkerPool::WorkerPool(int threads) {
@@ -14,12 +51,9 @@ WorkerPool::WorkerPool(int threads) {
 }
 
 WorkerPool::~WorkerPool() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_.store(true);
-    generation_.fetch_add(1);
-  }
-  wake_.notify_all();
+  stop_.store(true);
+  generation_.fetch_add(1);
+  generation_.notify_all();
   for (std::thread& t : helpers_) t.join();
 }
 
@@ -29,42 +63,79 @@ std::pair<std::size_t, std::size_t> WorkerPool::range(std::size_t n, int part) c
   return {n * p / parts, n * (p + 1) / parts};
 }
 
-void WorkerPool::run(std::size_t n, const Body& body) {
-  if (helpers_.empty() || n < 64) {  // small jobs: every part on this thread, same ranges
-    for (int part = 0; part < threads(); ++part) {
-      const auto [b, e] = range(n, part);
-      body(b, e, part);
+void WorkerPool::run_phases(std::span<const Phase> phases, bool parallel) {
+  if (helpers_.empty() || !parallel) {  // same parts, one after another on this thread
+    for (const Phase& phase : phases) {
+      for (int part = 0; part < threads(); ++part) phase(part);
     }
     return;
   }
-  body_ = &body;
-  n_ = n;
-  pending_.store(static_cast<int>(helpers_.size()));
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    generation_.fetch_add(1);
+  phases_ = phases;
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();  // no system call unless a helper sleeps
+  run_my_phases(0);  // ends with a barrier that every helper has passed its last phase
+  if (failed_.load()) {
+    failed_.store(false);
+    std::rethrow_exception(std::exchange(error_, nullptr));
   }
-  wake_.notify_all();
-  const auto [b, e] = range(n, 0);
-  body(b, e, 0);
-  while (pending_.load(std::memory_order_acquire) != 0) std::this_thread::yield();
-  body_ = nullptr;
 }
 
-void WorkerPool::helper_loop(int index) {
-  std::uint64_t seen = 0;
-  while (true) {
-    int spins = 0;
-    while (generation_.load(std::memory_order_acquire) == seen && spins < kSpinIterations) ++spins;
-    if (generation_.load(std::memory_order_acquire) == seen) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return generation_.load() != seen; });
+void WorkerPool::run(std::size_t n, const Body& body) {
+  const Phase phase = [&](int part) {
+    const auto [b, e] = range(n, part);
+    body(b, e, part);
+  };
+  run_phases(std::span<const Phase>(&phase, 1), n >= 64);
+}
+
+void WorkerPool::run_my_phases(int part) {
+  for (const Phase& phase : phases_) {
+    try {
+      phase(part);
+    } catch (...) {  // keep to the barriers, or the other threads would wait forever
+      if (!failed_.exchange(true)) error_ = std::current_exception();
     }
+    barrier();
+  }
+}
+
+namespace {
+
+/// Spins on `word` while it equals `old` for up to `spin`, then sleeps on it (futex) until it changes.
+void wait_while_equal(const std::atomic<std::uint32_t>& word, std::uint32_t old, std::chrono::microseconds spin) {
+  const auto deadline = Clock::now() + spin;
+  for (int spins = 1; word.load(std::memory_order_acquire) == old; ++spins) {
+    if ((spins & 63) == 0 && Clock::now() > deadline) {
+      word.wait(old, std::memory_order_acquire);
+    } else {
+      cpu_relax();
+    }
+  }
+}
+
+}  // namespace
+
+// Sense by generation: the last thread to arrive resets the count and bumps the generation.
+void WorkerPool::barrier() {
+  const std::uint32_t generation = barrier_generation_.load(std::memory_order_acquire);
+  if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == threads()) {
+    arrived_.store(0, std::memory_order_relaxed);
+    barrier_generation_.fetch_add(1, std::memory_order_release);
+    barrier_generation_.notify_all();
+    return;
+  }
+  wait_while_equal(barrier_generation_, generation, kBarrierSpin);
+}
+
+void WorkerPool::wait_for_work(std::uint32_t seen) { wait_while_equal(generation_, seen, kIdleSpin); }
+
+void WorkerPool::helper_loop(int part) {
+  std::uint32_t seen = 0;
+  while (true) {
+    wait_for_work(seen);
     seen = generation_.load(std::memory_order_acquire);
     if (stop_.load()) return;
-    const auto [b, e] = range(n_, index);
-    (*body_)(b, e, index);
-    pending_.fetch_sub(1, std::memory_order_release);
+    run_my_phases(part);
   }
 }
 

@@ -1,44 +1,89 @@
 #pragma once
-// A small persistent thread pool for the SPH particle loops. Work is split into fixed contiguous
-// index ranges and every particle's sum runs in a fixed order, so results do not depend on the
-// number of threads (determinism). Helpers spin briefly before sleeping, because one SPH pass over
-// a few hundred particles takes only tens of microseconds.
+// A small persistent thread pool for the SPH force evaluation. One evaluation is a fixed sequence
+// of phases (load + mirrors, grid, density, forces); every thread runs each phase for its own part
+// (fixed contiguous index ranges) and a spin barrier separates the phases, so a whole evaluation
+// costs one hand-off and a few barriers. Every particle's sum is computed by one thread in a fixed
+// order, so results do not depend on the number of threads (determinism). Waiting threads spin
+// briefly, then sleep on the atomic (futex): one evaluation of a few hundred particles takes only
+// tens of microseconds and the integrator asks for the next one a few microseconds later, but on a
+// machine busy with other work a spinning thread would only steal time from its partner.
 #include <atomic>
-#include <condition_variable>
 #include <cstddef>
+#include <cstdint>
+#include <exception>
 #include <functional>
-#include <mutex>
+#include <span>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace jellysim::sph {
 
+/// The number of threads a `threads` setting asks for: itself when >= 1, all cores
+/// (std::thread::hardware_concurrency, at least 1, at most 64) when 0.
+int resolve_threads(int threads);
+
 class WorkerPool {
  public:
-  /// threads >= 1; 1 runs everything on the caller's thread.
+  /// threads in [1, 64]; 1 runs everything on the caller's thread. Throws std::invalid_argument.
   explicit WorkerPool(int threads = 1);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
   int threads() const { return static_cast<int>(helpers_.size()) + 1; }
-  /// Calls body(begin, end, part) on disjoint ranges covering [0, n), part = 0 .. threads() − 1;
-  /// returns when all are done. Ranges depend only on n and the thread count.
+  /// The contiguous part `part` of [0, n): [n p / P, n (p + 1) / P) for P = threads().
+  std::pair<std::size_t, std::size_t> range(std::size_t n, int part) const;
+
+  /// One phase: called with each part 0 .. threads() − 1 exactly once.
+  using Phase = std::function<void(int part)>;
+  /// Runs the phases in order; no part starts phase k + 1 before every part finished phase k.
+  /// With `parallel` false (or one thread) the caller runs every part of each phase in turn, which
+  /// gives the same results. Returns when all phases are done. An exception thrown by a phase is
+  /// rethrown here once every thread has finished (the first one caught; later phases still run).
+  void run_phases(std::span<const Phase> phases, bool parallel = true);
+
+  /// Calls body(begin, end, part) on the ranges of [0, n) (a single phase; serial when n < 64).
   using Body = std::function<void(std::size_t, std::size_t, int)>;
   void run(std::size_t n, const Body& body);
 
  private:
-  void helper_loop(int index);
-  std::pair<std::size_t, std::size_t> range(std::size_t n, int part) const;
+  void helper_loop(int part);
+  void wait_for_work(std::uint32_t seen);
+  void run_my_phases(int part);
+  void barrier();
 
   std::vector<std::thread> helpers_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::atomic<std::uint64_t> generation_{0};
-  std::atomic<int> pending_{0};
+  alignas(64) std::atomic<std::uint32_t> generation_{0};  ///< bumped once per run_phases call
   std::atomic<bool> stop_{false};
-  const Body* body_ = nullptr;
-  std::size_t n_ = 0;
+  std::span<const Phase> phases_;
+  std::exception_ptr error_;
+  std::atomic<bool> failed_{false};
+  // Spin barrier state, on its own cache line.
+  alignas(64) std::atomic<int> arrived_{0};
+  alignas(64) std::atomic<std::uint32_t> barrier_generation_{0};
+};
+
+/// Chooses between running a repeated parallel job on all threads or serially, by timing both now
+/// and then (the results are the same either way). On a machine busy with other work, a thread
+/// waiting at a barrier for a descheduled partner makes the parallel path slower than one thread;
+/// then the serial path wins until the next trial. The parallel path runs first; the last
+/// 2 × `trials` jobs of every `period` alternate between the paths, and the faster total decides
+/// the next period.
+class PathChooser {
+ public:
+  explicit PathChooser(int period = 512, int trials = 8) : period_(period), trials_(trials) {}
+  /// Whether the next job should run in parallel.
+  bool parallel() const { return in_trial() ? position_ % 2 == 0 : parallel_wins_; }
+  /// Records the wall time (s) of the job just run on the path parallel() chose.
+  void record(double seconds);
+
+ private:
+  bool in_trial() const { return position_ >= period_ - 2 * trials_; }
+
+  int period_, trials_, position_ = 0;
+  bool parallel_wins_ = true;
+  double parallel_time_ = 0.0, serial_time_ = 0.0;
 };
 
 }  // namespace jellysim::sph

@@ -42,12 +42,12 @@ void validate(const Scene& s) {
   for (elastic::PointKind kind : s.body.points.kind) {
     if (kind == elastic::PointKind::Prescribed) throw std::invalid_argument("scene: prescribed body points are not supported");
   }
-  if (s.threads < 1 || s.threads > 64) throw std::invalid_argument("scene: threads must be in [1, 64]");
+  if (s.threads < 0 || s.threads > 64) throw std::invalid_argument("scene: threads must be in [0, 64] (0: one per core)");
   validate(s.sph);
 }
 
 CoupledSystem::CoupledSystem(Scene& scene)
-    : scene_(scene), fluid_((validate(scene), std::make_unique<SphFluid>(scene.sph, scene.walls, scene.threads))),
+    : scene_(scene), fluid_((validate(scene), std::make_unique<SphFluid>(scene.sph, scene.walls, resolve_threads(scene.threads)))),
       body_(scene.body) {}
 
 Eigen::Index CoupledSystem::dimension() const {
@@ -81,23 +81,55 @@ void CoupledSystem::unpack_state(const ode::Vector& y) const {
 }
 
 // y' = [v; a] (eq. 2.19): SPH accelerations on the fluid (eqs. 5.5-5.8), gravity on every free
-// particle, spring forces / mass on free body points; pinned points stay still.
+// particle, spring forces / mass on free body points; pinned points stay still. With several
+// threads the whole evaluation is one parallel region: each thread unpacks and packs its own
+// range of fluid particles, and the last one also does the solid particles and the body.
 void CoupledSystem::compute_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const {
-  const std::size_t n = scene_.position.size(), m = scene_.body.points.size(), half = n + m, nf = scene_.fluid_count;
+  const std::size_t n = scene_.position.size(), nf = scene_.fluid_count;
   if (y.size() != dimension()) throw std::invalid_argument("CoupledSystem: state size does not match the scene");
   dydt.resize(y.size());
   xf_.resize(nf);
   vf_.resize(nf);
-  mf_.assign(scene_.mass.begin(), scene_.mass.begin() + static_cast<std::ptrdiff_t>(nf));
-  for (std::size_t i = 0; i < nf; ++i) {
-    xf_[i] = get(y, i);
-    vf_[i] = get(y, half + i);
+  mf_.resize(nf);
+  af_.resize(nf);
+  if (nf == 0) {
+    rest_derivative(t, y, dydt);
+    return;
   }
-  af_.assign(nf, Vec2{});
-  if (nf > 0) fluid_->compute_accelerations(xf_, vf_, mf_, af_);
-  for (std::size_t i = 0; i < n; ++i) {
+  // One pointer per callback keeps each std::function within its small-object buffer (no allocation).
+  struct Context {
+    const CoupledSystem* self;
+    const ode::Vector* y;
+    ode::Vector* dydt;
+    std::size_t half;
+    double t;
+  } const c{this, &y, &dydt, n + scene_.body.points.size(), t};
+  EvaluationHooks hooks;
+  hooks.load = [p = &c](std::size_t b, std::size_t e) {
+    const CoupledSystem& s = *p->self;
+    for (std::size_t i = b; i < e; ++i) {
+      s.xf_[i] = get(*p->y, i);
+      s.vf_[i] = get(*p->y, p->half + i);
+      s.mf_[i] = s.scene_.mass[i];
+    }
+  };
+  hooks.store = [p = &c](std::size_t b, std::size_t e) {
+    const CoupledSystem& s = *p->self;
+    for (std::size_t i = b; i < e; ++i) {
+      set(*p->dydt, i, s.vf_[i]);
+      set(*p->dydt, p->half + i, s.af_[i] + s.scene_.particle_gravity);
+    }
+  };
+  hooks.side = [p = &c] { p->self->rest_derivative(p->t, *p->y, *p->dydt); };
+  fluid_->compute_accelerations(xf_, vf_, mf_, af_, hooks);
+}
+
+// The part of y' that is not SPH: solid point masses (gravity only) and the body.
+void CoupledSystem::rest_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const {
+  const std::size_t n = scene_.position.size(), m = scene_.body.points.size(), half = n + m, nf = scene_.fluid_count;
+  for (std::size_t i = nf; i < n; ++i) {
     set(dydt, i, get(y, half + i));
-    set(dydt, half + i, (i < nf ? af_[i] : Vec2{}) + scene_.particle_gravity);
+    set(dydt, half + i, scene_.particle_gravity);
   }
   if (m == 0) return;
   xb_.resize(m);
@@ -190,8 +222,9 @@ class Runner {
       }
       if (t_ >= ts.duration - eps) break;
       const double t_target = std::min({static_cast<double>(frame) * ts.frame_interval, next_emission(emitted), ts.duration});
-      const bool to_target = thin_boundary_limit(y) >= t_target - t_;
-      const double dt_limit = std::min(t_target - t_, thin_boundary_limit(y));
+      const double thin_limit = thin_boundary_limit(y);
+      const bool to_target = thin_limit >= t_target - t_;
+      const double dt_limit = std::min(t_target - t_, thin_limit);
       y_start_ = y;
       double dt_taken = 0.0;
       try {
@@ -222,7 +255,7 @@ class Runner {
  private:
   void make_stepper() {
     if (stepper_) rejected_before_ += stepper_->statistics().rejected;
-    integrator_ = ode::make_integrator(settings_.time.integrator);
+    integrator_ = sph::make_integrator(settings_.time.integrator, settings_.newton);
     if (settings_.error_control == "step-doubling") integrator_ = without_embedded_pair(std::move(integrator_));
     stepper_ = std::make_unique<ode::AdaptiveStepper>(*integrator_, settings_.time.tolerances);
   }
@@ -252,11 +285,22 @@ class Runner {
   double thin_boundary_limit(const ode::Vector& y) const {
     if (!settings_.thin_boundary_limit || !std::isfinite(result_.boundary_width_m)) return kInf;
     const std::size_t n = scene_.position.size(), m = scene_.body.points.size(), half = n + m;
-    double vp = 0.0, vb = 0.0;
-    for (std::size_t i = 0; i < n; ++i) vp = std::max(vp, norm(get(y, half + i)));
-    for (std::size_t i = 0; i < m; ++i) vb = std::max(vb, norm(get(y, half + n + i)));
-    const double v = vp + vb;
+    const double v = fastest_speed(y, half, n) + fastest_speed(y, half + n, m);
     return v > 0.0 ? result_.boundary_width_m / (2.0 * v) : kInf;
+  }
+
+  /// Largest |v| of `count` velocities from slot `first` of y: picked by |v|², so only one hypot.
+  static double fastest_speed(const ode::Vector& y, std::size_t first, std::size_t count) {
+    double best = -1.0;
+    std::size_t at = first;
+    for (std::size_t i = first; i < first + count; ++i) {
+      const double s = norm_squared(get(y, i));
+      if (s > best) {
+        best = s;
+        at = i;
+      }
+    }
+    return count > 0 ? norm(get(y, at)) : 0.0;
   }
 
   void collide(ode::Vector& y, double dt) {
@@ -277,6 +321,8 @@ class Runner {
   RunResult finish(std::string failure) {
     result_.statistics.simulated_seconds = t_;
     result_.statistics.function_evaluations = system_.evaluations();
+    result_.threads = system_.fluid().threads();
+    result_.parallel_evaluations = system_.fluid().parallel_evaluations();
     result_.statistics.rejected_steps = rejected_before_ + stepper_->statistics().rejected;
     result_.failed = !failure.empty();
     result_.failure = std::move(failure);

@@ -6,6 +6,7 @@
 #include "elastic/body.hpp"
 #include "ode/integrator.hpp"
 #include "sim/time_stepping.hpp"
+#include "sph/backward_euler.hpp"
 #include "sph/collisions.hpp"
 #include "sph/fluid.hpp"
 
@@ -30,7 +31,7 @@ struct Scene {
   std::vector<Wall> walls;
   SphParameters sph;
   CollisionSettings collision;
-  int threads = 1;                       ///< threads for the SPH particle loops
+  int threads = 1;                       ///< threads for the SPH evaluation; 0: one per core
 };
 
 /// Throws std::invalid_argument when the scene is inconsistent (sizes, masses, outline indices,
@@ -53,6 +54,8 @@ class CoupledSystem final : public ode::OdeSystem {
   void compute_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const override;
 
  private:
+  void rest_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const;
+
   Scene& scene_;
   std::unique_ptr<SphFluid> fluid_;
   mutable elastic::Body body_;  ///< working copy (muscles change its rest lengths)
@@ -75,12 +78,15 @@ struct RunSettings {
   bool thin_boundary_limit = true;  ///< eq. 5.31
   double max_speed = 1e3;           ///< a particle or body point faster than this stops the run (m/s)
   Emitter emitter;
+  NewtonKrylovSettings newton;      ///< backward Euler's Jacobian-free Newton–Krylov solve
 };
 
 struct RunResult {
   sim::RunStatistics statistics;
   CollisionStatistics collisions;
   double boundary_width_m = 0.0;  ///< w_b of eq. 5.31 (inf without a body)
+  int threads = 1;                     ///< threads of the SPH evaluation
+  std::int64_t parallel_evaluations = 0;  ///< SPH evaluations run on all threads (see PathChooser)
   bool failed = false;
   std::string failure;
 };

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 
 namespace jellysim::sph {
 namespace {
@@ -106,11 +108,22 @@ TEST(SphFluid, ThreadsGiveBitIdenticalAccelerations) {
   }
   const std::vector<double> m(x.size(), 1.3);
   const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
-  std::vector<Vec2> a1, a2;
-  SphFluid one(parameters(), walls, 1), two(parameters(), walls, 2);
-  one.compute_accelerations(x, v, m, a1);
-  two.compute_accelerations(x, v, m, a2);
-  EXPECT_EQ(a1, a2);
+  SphFluid one(parameters(), walls, 1), two(parameters(), walls, 2), three(parameters(), walls, 3);
+  // Sizes change between evaluations (buffers are reused), including one below the parallel cut-off.
+  for (std::size_t n : {900u, 300u, 40u, 900u}) {
+    const std::vector<Vec2> xn(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n)),
+        vn(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
+    const std::vector<double> mn(n, 1.3);
+    std::vector<Vec2> a1, a2, a3;
+    one.compute_accelerations(xn, vn, mn, a1);
+    two.compute_accelerations(xn, vn, mn, a2);
+    three.compute_accelerations(xn, vn, mn, a3);
+    EXPECT_EQ(a1, a2) << n;
+    EXPECT_EQ(a1, a3) << n;
+    EXPECT_EQ(one.density(), three.density()) << n;
+    EXPECT_EQ(one.mirrored_count(), three.mirrored_count()) << n;
+    EXPECT_GT(one.mirrored_count(), 0u) << n;
+  }
 }
 
 TEST(SphWalls, MirroredTwinsRepelParticlesFromAWall) {
@@ -219,6 +232,68 @@ TEST(SphFluid, AccelerationsMatchADirectSumOverAllPairs) {
     ASSERT_NEAR(a[i].x, expected.x, 1e-9 * (norm(expected) + 1.0)) << i;
     ASSERT_NEAR(a[i].y, expected.y, 1e-9 * (norm(expected) + 1.0)) << i;
   }
+}
+
+}  // namespace
+}  // namespace jellysim::sph
+
+namespace jellysim::sph {
+namespace {
+
+TEST(SphWorkerPool, PhasesRunInOrderForEveryPartAndErrorsReachTheCaller) {
+  for (int threads : {1, 2, 3}) {
+    WorkerPool pool(threads);
+    std::vector<int> first(static_cast<std::size_t>(threads), -1), second(static_cast<std::size_t>(threads), -1);
+    int total = 0;
+    const std::array<WorkerPool::Phase, 2> phases{
+        WorkerPool::Phase([&](int part) { first[static_cast<std::size_t>(part)] = part; }),
+        // Sees every part's first phase: the barrier separates the phases.
+        WorkerPool::Phase([&](int part) {
+          int sum = 0;
+          for (int v : first) sum += v;
+          second[static_cast<std::size_t>(part)] = sum;
+          if (part == 0) total = sum;
+        })};
+    for (bool parallel : {true, false}) {
+      pool.run_phases(phases, parallel);
+      EXPECT_EQ(total, threads * (threads - 1) / 2);
+      for (int v : second) EXPECT_EQ(v, total);
+    }
+    const std::array<WorkerPool::Phase, 1> failing{WorkerPool::Phase([&](int part) {
+      if (part == threads - 1) throw std::runtime_error("phase failed");
+    })};
+    EXPECT_THROW(pool.run_phases(failing), std::runtime_error) << threads << " threads";
+    pool.run_phases(phases);  // still usable
+    EXPECT_EQ(total, threads * (threads - 1) / 2);
+  }
+  EXPECT_THROW(WorkerPool(0), std::invalid_argument);
+  EXPECT_EQ(resolve_threads(3), 3);
+  EXPECT_GE(resolve_threads(0), 1);
+}
+
+}  // namespace
+}  // namespace jellysim::sph
+
+namespace jellysim::sph {
+namespace {
+
+/// Runs one period of the chooser with the given times per path; returns the jobs run in parallel.
+int run_period(PathChooser& chooser, int period, double parallel_s, double serial_s) {
+  int parallel = 0;
+  for (int k = 0; k < period; ++k) {
+    const bool p = chooser.parallel();
+    parallel += p ? 1 : 0;
+    chooser.record(p ? parallel_s : serial_s);
+  }
+  return parallel;
+}
+
+TEST(SphPathChooser, FollowsTheFasterPathAndKeepsTrying) {
+  PathChooser chooser(64, 4);
+  EXPECT_EQ(run_period(chooser, 64, 3.0, 1.0), 56 + 4);  // parallel first; the trial finds serial faster
+  EXPECT_EQ(run_period(chooser, 64, 3.0, 1.0), 4);       // serial but for the trial's parallel jobs
+  EXPECT_EQ(run_period(chooser, 64, 1.0, 2.0), 4);       // the trial finds parallel faster again
+  EXPECT_EQ(run_period(chooser, 64, 1.0, 2.0), 60);
 }
 
 }  // namespace

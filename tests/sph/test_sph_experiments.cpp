@@ -45,7 +45,7 @@ TEST(SphExperiments, SameInputsGiveIdenticalFrames) {
 
 TEST(SphExperiments, BadInputExitsTwoNamingTheFieldAndWritesNothing) {
   const fs::path out = scratch("bad");
-  for (const std::string set : {"fluid.gas_constant=-1", "larva.contraction=2", "time.integrator=backward-euler",
+  for (const std::string set : {"fluid.gas_constant=-1", "larva.contraction=2", "run.threads=-1",
                                 "fluid.particles=0"}) {
     const Result r = jellysim("experiment mosquito-larva --out " + out.string() + " --set " + set);
     EXPECT_EQ(r.exit_code, 2) << set;
