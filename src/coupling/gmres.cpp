@@ -34,6 +34,7 @@ GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eig
   if (b_norm == 0.0) {
     x.setZero(b.size());
     report.converged = true;
+    report.coefficients_valid = coefficients != nullptr;  // x = 0 = the empty combination
     return report;
   }
   const Eigen::Index n = b.size();
@@ -99,6 +100,7 @@ GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eig
       *coefficients = y;
       report.relative_residual = std::abs(g[k]) / b_norm;
       report.converged = true;
+      report.coefficients_valid = true;
       return report;
     }
     first_cycle = false;

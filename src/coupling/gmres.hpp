@@ -12,6 +12,9 @@ struct GmresReport {
   double relative_residual = 0.0; ///< ‖b − A x‖ / ‖b‖ at exit
   bool converged = false;
   bool restarted = false;         ///< more than one cycle of `restart` iterations was needed
+  /// gmres_from_zero only: x = Σ coefficients[k]·v_k holds (false after a restart, a stop at
+  /// max_iterations or a convergence found only by the final residual check).
+  bool coefficients_valid = false;
 };
 
 using LinearOperator = std::function<void(const Eigen::VectorXd& in, Eigen::VectorXd& out)>;
@@ -22,7 +25,7 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
 
 /// GMRES from x = 0 for callers that keep by-products of each operator application: the k-th
 /// application is to the k-th Krylov basis vector v_k, and on return x = Σ coefficients[k]·v_k
-/// unless report.restarted (then coefficients is empty and x is still the solution). Saves two
+/// when report.coefficients_valid (otherwise coefficients is empty and x is still the result). Saves two
 /// applications over gmres(): none for the zero initial guess, and no final check of the residual
 /// (the Givens recurrence gives it; exact in exact arithmetic).
 GmresReport gmres_from_zero(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,

@@ -282,14 +282,14 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
 
   // 3. Apply the end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ.
   fluid::Velocity& field = base_field_;
-  if (!report.krylov.restarted && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
+  if (report.krylov.coefficients_valid && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
     for (Eigen::Index k = 0; k < coefficients.size(); ++k) {
       const fluid::Velocity& g = basis_fields_[static_cast<std::size_t>(k)];
       const double c = coefficients[k];
       for (std::size_t i = 0; i < field.u.raw().size(); ++i) field.u.raw()[i] += c * g.u.raw()[i];
       for (std::size_t i = 0; i < field.v.raw().size(); ++i) field.v.raw()[i] += c * g.v.raw()[i];
     }
-  } else {  // GMRES restarted: project the end-of-step forces afresh
+  } else {  // GMRES restarted or stopped early: project the end-of-step forces afresh
     unflatten(f0 + stiffness * dx, work_);
     project_spread_forces(work_);
     field = scratch_.velocity;

@@ -6,6 +6,7 @@
 // The simulation steps to each output frame, or one step at a time for an interactive viewer,
 // and accepts live edits (frequency, contraction, stiffness, viscosity, dragging, stirring).
 // Knows nothing of files or pixels.
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>

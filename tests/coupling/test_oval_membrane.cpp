@@ -56,7 +56,7 @@ TEST(Gmres, FromZeroReturnsTheSolutionAsACombinationOfTheVectorsItApplied) {
   const int n = 12;
   Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) a(i, j) += 0.3 * std::sin(1.0 + 3.0 * i + 7.0 * j) / n;  // nonsymmetric, well conditioned
+    for (int j = 0; j < n; ++j) a(i, j) += 0.3 * std::sin(1.0 + 3.0 * i + 7.0 * j) / n;  // I + rank 2: GMRES needs 3 steps
   Eigen::VectorXd b(n);
   for (int i = 0; i < n; ++i) b[i] = std::cos(0.5 * i);
   std::vector<Eigen::VectorXd> applied;
@@ -69,6 +69,7 @@ TEST(Gmres, FromZeroReturnsTheSolutionAsACombinationOfTheVectorsItApplied) {
       b, x, coefficients, 1e-12, 100);
   ASSERT_TRUE(r.converged);
   EXPECT_FALSE(r.restarted);
+  ASSERT_TRUE(r.coefficients_valid);
   EXPECT_EQ(static_cast<int>(applied.size()), r.iterations);
   ASSERT_EQ(coefficients.size(), r.iterations);
   Eigen::VectorXd combined = Eigen::VectorXd::Zero(n);
@@ -76,6 +77,20 @@ TEST(Gmres, FromZeroReturnsTheSolutionAsACombinationOfTheVectorsItApplied) {
   EXPECT_LT((combined - x).norm(), 1e-13 * x.norm());
   EXPECT_LT((a * x - b).norm(), 1e-11 * b.norm());
   EXPECT_LT(r.relative_residual, 1e-12);
+  // Stopped before convergence, or restarted: no coefficients, but x is still GMRES's result.
+  Eigen::VectorXd x2, c2;
+  const GmresReport early = gmres_from_zero([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = a * in; }, b,
+                                            x2, c2, 1e-12, 2);
+  EXPECT_FALSE(early.coefficients_valid);
+  EXPECT_EQ(c2.size(), 0);
+  EXPECT_LT((a * x2 - b).norm(), b.norm());
+  Eigen::VectorXd x3, c3;
+  const GmresReport restarted = gmres_from_zero([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = a * in; },
+                                                b, x3, c3, 1e-12, 100, 2);
+  EXPECT_TRUE(restarted.converged);
+  EXPECT_TRUE(restarted.restarted);
+  EXPECT_FALSE(restarted.coefficients_valid);
+  EXPECT_LT((a * x3 - b).norm(), 1e-11 * b.norm());
 }
 
 }  // namespace
