@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "io/errors.hpp"
+#include "render/gl_program.hpp"
 
 namespace jellysim::render {
 
@@ -212,41 +213,6 @@ void main() {
   colour = gl_FrontFacing ? front_colour : back_colour;
 })";
 
-GLuint compile(GLenum type, const std::string& source) {
-  const GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw RunError(std::string("OpenGL shader does not compile: ") + log);
-  }
-  return shader;
-}
-
-GLuint link(const std::string& vertex, const std::string& fragment) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw RunError(std::string("OpenGL program does not link: ") + log);
-  }
-  return program;
-}
-
 // ---- matrices (column-major floats, positions relative to the camera target) -----------------
 
 using Mat4 = std::array<float, 16>;
@@ -437,8 +403,8 @@ OffscreenRenderer::OffscreenRenderer(int width_px, int height_px, int samples) :
   }
   try {
     m.make_framebuffers(samples);
-    m.background = link(kBackgroundVertex, kBackgroundFragment);
-    m.copy = link(kBackgroundVertex, kCopyFragment);
+    m.background = link_program(kBackgroundVertex, kBackgroundFragment);
+    m.copy = link_program(kBackgroundVertex, kCopyFragment);
     m.per_pixel = Impl::make_mesh_program(kMeshVertex, std::string(kMeshFragmentHead) + kLighting + kMeshFragmentMain);
   } catch (...) {
     eglMakeCurrent(m.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
@@ -498,7 +464,7 @@ std::string OffscreenRenderer::renderer_name() const {
 OffscreenRenderer::Impl::MeshProgram OffscreenRenderer::Impl::make_mesh_program(const std::string& vertex,
                                                                                const std::string& fragment) {
   MeshProgram m;
-  const GLuint p = m.program = link(vertex, fragment);
+  const GLuint p = m.program = link_program(vertex, fragment);
   m.view_projection = glGetUniformLocation(p, "view_projection");
   m.origin = glGetUniformLocation(p, "origin");
   m.eye = glGetUniformLocation(p, "eye");

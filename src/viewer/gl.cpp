@@ -3,46 +3,12 @@
 #include <cstring>
 
 #include "io/errors.hpp"
+#include "render/gl_program.hpp"
 
 namespace jellysim::viewer::gl {
 
-namespace {
-
-GLuint compile(GLenum kind, const char* source) {
-  const GLuint shader = glCreateShader(kind);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw RunError(std::string("viewer: OpenGL shader does not compile: ") + log);
-  }
-  return shader;
-}
-
-}  // namespace
-
 GLuint make_program(const char* vertex_source, const char* fragment_source) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_source);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_source);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw RunError(std::string("viewer: OpenGL program does not link: ") + log);
-  }
-  return program;
+  return render::link_program(vertex_source, fragment_source);
 }
 
 Texture::Texture() { glGenTextures(1, &id_); }
