@@ -264,6 +264,10 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   }
   t.tracers_per_side = static_cast<int>(c.integer("tank.tracers_per_side", 0, 1000));
   t.current_m_per_s = c.vec2("tank.current");
+  const std::string symmetry = c.choice("tank.symmetry", {"auto", "mirror", "none"});
+  t.symmetry = symmetry == "auto"     ? jellyfish::MirrorSymmetry::automatic
+               : symmetry == "mirror" ? jellyfish::MirrorSymmetry::mirror
+                                      : jellyfish::MirrorSymmetry::none;
 
   if (c.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
   read_objects(c, s);
@@ -285,6 +289,10 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("scene layout: ") + e.what());
   }
+  if (t.symmetry == jellyfish::MirrorSymmetry::mirror)
+    if (const std::string problem = jellyfish::mirror_symmetry_problem(s); !problem.empty())
+      throw InputError("field 'tank.symmetry' is \"mirror\", but the scene is not its own mirror image about the "
+                       "tank's centre line: " + problem + " (use \"auto\" or \"none\")");
   return s;
 }
 
@@ -488,6 +496,8 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
   j["markers"] = rec.frames.empty() ? 0 : rec.frames.front().umbrella.size();
   j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
   j["fluid_solver"] = settings.tank.solver;
+  j["symmetry"] = rec.stats.mirror_symmetric ? "mirror" : "none";
+  if (!rec.stats.symmetry_note.empty()) j["symmetry_note"] = rec.stats.symmetry_note;
   return j;
 }
 

@@ -6,6 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "elastic/mirror.hpp"
+#include "fluid/mirror.hpp"
+
 namespace jellysim::jellyfish {
 
 namespace {
@@ -44,7 +47,72 @@ std::vector<Vec2> jellyfish_outline(const Jellyfish& j) {
   return p;
 }
 
+/// The jellyfish whose points start at first_point[j] and end before first_point[j + 1].
+std::size_t owner_of_point(const std::vector<int>& first_point, int p) {
+  const auto it = std::upper_bound(first_point.begin(), first_point.end(), p);
+  return static_cast<std::size_t>(it - first_point.begin()) - 1;
+}
+
+bool same_contraction(const JellyfishSpec& a, const JellyfishSpec& b) {
+  return a.frequency_hz == b.frequency_hz && a.gamma == b.gamma && a.phase_cycles == b.phase_cycles &&
+         a.profile.shape == b.profile.shape && a.profile.contract_fraction == b.profile.contract_fraction &&
+         a.profile.expansion_exponent == b.profile.expansion_exponent &&
+         a.profile.trochoid_skew == b.profile.trochoid_skew &&
+         a.aperture_expansion_exponent == b.aperture_expansion_exponent && a.neural_delay_s == b.neural_delay_s &&
+         a.closed_loop == b.closed_loop && a.controller_alpha == b.controller_alpha;
+}
+
+/// What in the specs (walls, current, steering, obstacle paths) breaks the mirror symmetry.
+std::string mirror_spec_problem(const SwimSettings& s) {
+  const fluid::Boundaries& b = s.tank.boundaries;
+  if (b.west.type != b.east.type) return "the west and east sides are of different types";
+  if (b.west.velocity_m_per_s != Vec2{-b.east.velocity_m_per_s.x, b.east.velocity_m_per_s.y})
+    return "the west and east wall or in-flow velocities are not mirror images";
+  if (b.south.velocity_m_per_s.x != 0.0 || b.north.velocity_m_per_s.x != 0.0)
+    return "the south or north wall moves sideways";
+  if (s.tank.current_m_per_s.x != 0.0) return "the current has a sideways component";
+  for (std::size_t j = 0; j < s.school.size(); ++j)
+    if (s.school[j].steering) return "jellyfish " + std::to_string(j + 1) + " steers";
+  for (const ObstacleSpec& o : s.obstacles)
+    if (o.motion.velocity_m_per_s.x != 0.0 || o.motion.amplitude_m.x != 0.0) return o.name + " moves sideways";
+  return {};
+}
+
+/// What in the assembled body (points, springs, contraction) breaks the mirror symmetry; on
+/// success fills the point and jellyfish partners.
+std::string mirror_body_problem(const SwimSettings& s, const elastic::Body& body, const std::vector<int>& first_point,
+                                std::vector<int>& partners, std::vector<int>& jellyfish_partners) {
+  const double axis = 0.5 * s.tank.width_m;
+  partners = elastic::mirror_partners(body, axis, 1e-9 * std::max(s.tank.width_m, s.tank.height_m));
+  if (partners.empty())
+    return "the bodies are not mirror images of each other about x = " + std::to_string(axis) +
+           " m (a jellyfish off the centre line or tilted, or an obstacle without a mirror image)";
+  jellyfish_partners.assign(s.school.size(), 0);
+  for (std::size_t j = 0; j < s.school.size(); ++j) {
+    const std::size_t k = owner_of_point(first_point, partners[static_cast<std::size_t>(first_point[j])]);
+    if (!same_contraction(s.school[j], s.school[k]))
+      return "jellyfish " + std::to_string(j + 1) + " and its mirror image, jellyfish " + std::to_string(k + 1) +
+             ", contract differently";
+    jellyfish_partners[j] = static_cast<int>(k);
+  }
+  if (!elastic::springs_mirror_symmetric(body, partners)) return "the springs are not mirror images of each other";
+  return {};
+}
+
 }  // namespace
+
+std::string mirror_symmetry_problem(const SwimSettings& settings) {
+  if (std::string problem = mirror_spec_problem(settings); !problem.empty()) return problem;
+  elastic::Body body;
+  std::vector<int> first_point;
+  for (const JellyfishSpec& spec : settings.school) {
+    first_point.push_back(static_cast<int>(body.points.size()));
+    append_body(Jellyfish(spec).body(), body);
+  }
+  for (const ObstacleSpec& o : settings.obstacles) add_obstacle(o, peskin_spacing(settings.tank), body);
+  std::vector<int> partners, jellyfish_partners;
+  return mirror_body_problem(settings, body, first_point, partners, jellyfish_partners);
+}
 
 const JellyfishSpec& SwimSettings::jellyfish() const {
   if (school.empty()) throw std::logic_error("the scene has no jellyfish");
@@ -126,6 +194,7 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
   }
   strain_reference_.resize(body_.linear.size(), 0.0);  // tethers have zero rest length: no strain
 
+  set_up_mirror_symmetry();
   coupling_ = std::make_unique<coupling::ImmersedBoundary>(*fluid_, body_, settings_.coupling,
                                                            [this](double time, elastic::Body&) { actuate(time); });
   if (t.tracers_per_side > 0) {
@@ -155,6 +224,36 @@ void SwimSimulation::actuate(double t) {
     std::copy(part.angular.rest_angle.begin(), part.angular.rest_angle.end(), body_.angular.rest_angle.begin() + static_cast<std::ptrdiff_t>(as));
     std::copy(part.angular.stiffness.begin(), part.angular.stiffness.end(), body_.angular.stiffness.begin() + static_cast<std::ptrdiff_t>(as));
   }
+}
+
+void SwimSimulation::set_up_mirror_symmetry() {
+  if (settings_.tank.symmetry == MirrorSymmetry::none) return;
+  std::string problem = mirror_spec_problem(settings_);
+  if (problem.empty())
+    problem = mirror_body_problem(settings_, body_, jellyfish_offset_, mirror_partner_, jellyfish_mirror_);
+  if (!problem.empty()) {
+    if (settings_.tank.symmetry == MirrorSymmetry::mirror)
+      throw std::invalid_argument("tank.symmetry = \"mirror\" needs a scene that is its own mirror image: " + problem);
+    mirror_note_ = "the scene is not its own mirror image: " + problem;
+    return;
+  }
+  mirror_active_ = true;
+}
+
+void SwimSimulation::keep_mirror_symmetry() {
+  fluid::keep_mirror_symmetric_part(fluid_->state());
+  elastic::keep_mirror_symmetric_part(body_, mirror_partner_, 0.5 * settings_.tank.width_m);
+}
+
+void SwimSimulation::end_mirror_symmetry(const std::string& why) {
+  if (!mirror_active_) return;
+  mirror_active_ = false;
+  mirror_note_ = "the mirror symmetry ended at t = " + std::to_string(time_s()) + " s: " + why;
+}
+
+void SwimSimulation::edit_of_jellyfish(std::size_t j, const char* what) {
+  if (mirror_active_ && jellyfish_mirror_.at(j) != static_cast<int>(j))
+    end_mirror_symmetry(std::string(what) + " of jellyfish " + std::to_string(j + 1) + " alone");
 }
 
 void SwimSimulation::copy_back_to_jellyfish() {
@@ -225,6 +324,7 @@ SwimStep SwimSimulation::step(double max_dt_s) {
     return s;
   }
   const coupling::CoupledStepReport r = coupling_->step(s.dt_s);
+  if (mirror_active_) keep_mirror_symmetry();
   copy_back_to_jellyfish();
   s.krylov_iterations = r.krylov.iterations;
   if (!tracers_.positions().empty()) tracers_.advect(fluid_->state().velocity, settings_.tank.boundaries, s.dt_s);
@@ -242,6 +342,8 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   auto finish = [&]() {
     stats.simulated_seconds = time_s();
     stats.steps = coupling_->steps();
+    stats.mirror_symmetric = mirror_active_;
+    stats.symmetry_note = mirror_note_;
     stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!std::isfinite(stats.smallest_step_s)) stats.smallest_step_s = 0.0;
     return stats;
@@ -284,11 +386,21 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
 
 // ---- Live edits ----
 
-void SwimSimulation::set_frequency(std::size_t j, double hz) { school_.at(j)->set_frequency(hz, time_s()); }
-void SwimSimulation::set_gamma(std::size_t j, double gamma) { school_.at(j)->set_gamma(gamma); }
-void SwimSimulation::set_stiffness_scale(std::size_t j, double scale) { school_.at(j)->set_stiffness_scale(scale); }
+void SwimSimulation::set_frequency(std::size_t j, double hz) {
+  school_.at(j)->set_frequency(hz, time_s());
+  edit_of_jellyfish(j, "a frequency change");
+}
+void SwimSimulation::set_gamma(std::size_t j, double gamma) {
+  school_.at(j)->set_gamma(gamma);
+  edit_of_jellyfish(j, "a contraction change");
+}
+void SwimSimulation::set_stiffness_scale(std::size_t j, double scale) {
+  school_.at(j)->set_stiffness_scale(scale);
+  edit_of_jellyfish(j, "a stiffness change");
+}
 void SwimSimulation::set_steer_target(std::size_t j, std::optional<Vec2> target_m) {
   school_.at(j)->set_steer_target(target_m);
+  if (target_m) end_mirror_symmetry("jellyfish " + std::to_string(j + 1) + " began to steer");
 }
 void SwimSimulation::set_viscosity(double nu_m2_per_s) { fluid_->set_viscosity(nu_m2_per_s); }
 
@@ -301,12 +413,15 @@ void SwimSimulation::stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_
         if (r2 < 9.0) f(i, j) += amount * std::exp(-r2);
       }
   };
+  end_mirror_symmetry("the fluid was stirred");
   splat(fluid_->state().velocity.u, delta_velocity_m_per_s.x);
   splat(fluid_->state().velocity.v, delta_velocity_m_per_s.y);
   fluid_->apply_boundaries();
 }
 
 void SwimSimulation::move_jellyfish(std::size_t j, Vec2 delta_m) {
+  if (delta_m.x != 0.0 || jellyfish_mirror_.empty() || jellyfish_mirror_.at(j) != static_cast<int>(j))
+    end_mirror_symmetry("jellyfish " + std::to_string(j + 1) + " was moved");
   elastic::Body& part = school_.at(j)->body();
   for (std::size_t p = 0; p < part.points.size(); ++p) {
     part.points.position[p] += delta_m;
@@ -316,6 +431,7 @@ void SwimSimulation::move_jellyfish(std::size_t j, Vec2 delta_m) {
 
 void SwimSimulation::move_obstacle(std::size_t o, Vec2 delta_m) {
   ObstacleParts& parts = obstacles_.at(o);
+  end_mirror_symmetry(settings_.obstacles.at(o).name + " was moved");
   *parts.shift += delta_m;
   for (std::size_t k = 0; k < parts.markers.size(); ++k) {
     body_.points.position[static_cast<std::size_t>(parts.markers[k])] += delta_m;

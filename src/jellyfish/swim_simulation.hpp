@@ -20,6 +20,13 @@
 
 namespace jellysim::jellyfish {
 
+/// Whether the simulation keeps the mirror symmetry of a mirror-symmetric scene (fluid/mirror.hpp).
+enum class MirrorSymmetry {
+  none,       ///< never: round-off grows into the 2D wake instability (the solver's own symmetry)
+  automatic,  ///< when the scene is its own mirror image about the tank's centre line, else none
+  mirror,     ///< always; a scene that is not its own mirror image is an error
+};
+
 struct TankSpec {
   double width_m = 0.8;
   double height_m = 0.8;
@@ -33,6 +40,7 @@ struct TankSpec {
   fluid::Boundaries boundaries = fluid::Boundaries::all(fluid::BoundaryType::free_slip);
   int tracers_per_side = 0;  ///< marker particles on a lattice over the whole tank (Figs 8.11/8.12)
   Vec2 current_m_per_s{};    ///< uniform background flow at t = 0 (with inflow/outflow or periodic sides)
+  MirrorSymmetry symmetry = MirrorSymmetry::none;
 };
 
 struct SwimSettings {
@@ -56,6 +64,8 @@ struct SwimRunStats {
   double smallest_step_s = 0.0;
   double largest_step_s = 0.0;
   long krylov_iterations = 0;
+  bool mirror_symmetric = false;  ///< the run kept the mirror symmetry (to its end)
+  std::string symmetry_note;      ///< why it did not, if symmetry was asked for
   std::string failure;  ///< "numerical instability: …" or "structural instability: …" with when/where
 };
 
@@ -98,6 +108,10 @@ class SwimSimulation {
   const fluid::Tracers& tracers() const { return tracers_; }
   /// The problem that should stop the run now, or "".
   std::string check() const;
+  /// True while every step keeps the scene's mirror symmetry (TankSpec::symmetry).
+  bool mirror_symmetric() const { return mirror_active_; }
+  /// Why the mirror symmetry is not kept (the scene is not symmetric, or a live edit broke it), or "".
+  const std::string& mirror_symmetry_note() const { return mirror_note_; }
 
   // ---- Live edits (the interactive viewer) ----
   /// Changes the contraction frequency keeping the current phase continuous.
@@ -120,6 +134,12 @@ class SwimSimulation {
  private:
   void actuate(double t);
   void copy_back_to_jellyfish();
+  void set_up_mirror_symmetry();
+  void keep_mirror_symmetry();
+  /// A live edit that makes the scene asymmetric ends the mirror symmetry, saying why.
+  void end_mirror_symmetry(const std::string& why);
+  /// Edits of one jellyfish keep the symmetry only if it is its own mirror image.
+  void edit_of_jellyfish(std::size_t jellyfish, const char* what);
 
   SwimSettings settings_;
   std::unique_ptr<fluid::FluidSolver> fluid_;
@@ -134,6 +154,10 @@ class SwimSimulation {
   fluid::Tracers tracers_;
   std::vector<double> strain_reference_;  ///< rest lengths at build time (muscles uncontracted)
   SwimRunStats totals_;
+  bool mirror_active_ = false;
+  std::string mirror_note_;
+  std::vector<int> mirror_partner_;          ///< per point of body_, its mirror image
+  std::vector<int> jellyfish_mirror_;        ///< per jellyfish, the one that is its mirror image
 };
 
 /// The largest marker spacing Peskin's rule allows on a tank: half the smaller cell size.
@@ -142,5 +166,9 @@ double peskin_spacing(const TankSpec& tank);
 /// Checks that bodies lie inside the tank and do not overlap one another; throws
 /// std::invalid_argument naming the bodies ("jellyfish 2", "objects[1] (circle)").
 void validate_layout(const SwimSettings& settings);
+
+/// Why the scene is not its own mirror image about the tank's centre line x = width/2 (walls,
+/// current, bodies and springs, contraction and steering), or "" when it is.
+std::string mirror_symmetry_problem(const SwimSettings& settings);
 
 }  // namespace jellysim::jellyfish

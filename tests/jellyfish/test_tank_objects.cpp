@@ -7,16 +7,12 @@
 #include "experiments/experiment.hpp"
 #include "experiments/jellyfish_runs.hpp"
 #include "io/errors.hpp"
+#include "jellyfish_test_util.hpp"
 
 namespace jellysim::experiments {
 namespace {
 
-io::Config scene(const std::string& overlay) {
-  io::Config c = default_config(find_experiment("jellyfish"));
-  c.set("tank.tracers_per_side=0");
-  c.merge(io::Config::parse(overlay, "test scene"));
-  return c;
-}
+io::Config scene(const std::string& overlay) { return testing::scene_with(overlay); }
 
 Vec2 centroid(const std::vector<Vec2>& p) {
   Vec2 c{};
@@ -27,10 +23,11 @@ Vec2 centroid(const std::vector<Vec2>& p) {
 // Two identical jellyfish placed as mirror images about the tank's centre line push water at each
 // other; whatever they do, they do it symmetrically: over two cycles their centroids stay mirror
 // images (x) and level (y) to GMRES-tolerance level (measured 4.7e-14 and 2.9e-13 m; allowed
-// 1e-6 m), while each moves forward.
+// 1e-6 m), while each moves forward. This is the solver's own symmetry (tank.symmetry = "none").
 TEST(Tank, TwoJellyfishSideBySideMoveSymmetrically) {
   const jellyfish::SwimSettings s = read_swim_settings(scene(R"(
 duration = 2.857142857142857
+tank.symmetry = "none"
 [jellyfish]
 position = [0.34, 0.3]
 [[objects]]
