@@ -2,6 +2,8 @@
 //  - BM_PressureSolve/<solver>/<n>: one pressure solve to a 1e-6 relative max-norm residual from
 //    a zero initial guess on an n × n all-wall (pure Neumann) cavity with a fixed smooth+rough
 //    right-hand side. Reports cells and iterations; time/cell shows the growth with N.
+//    _Fft/_Direct are exact (one pass); _FftR2rRows and _FftR2r2d are the transform solver's
+//    other methods (FftPoissonMethod), _FftR2r2d the original one, for old vs new side by side.
 //  - BM_FluidStep/<solver>/<n>: one full step of each fluid solver (multigrid, 1e-6) on a
 //    periodic Taylor–Green vortex (ν = 1e-3), Eulerian at its stable Δt, semi-Lagrangian at CFL 1;
 //    _PlainWarmStart: without the time-extrapolated pressure guess.
@@ -9,9 +11,11 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "fluid/experiments_taylor_green.hpp"
+#include "fluid/fft_poisson.hpp"
 #include "fluid/fluid_solver.hpp"
 #include "fluid/poisson.hpp"
 #include "fluid/semi_lagrangian.hpp"
@@ -29,16 +33,14 @@ std::vector<double> benchmark_rhs(int n) {
   return b;
 }
 
-void pressure_solve(benchmark::State& state, const char* name) {
+// set_up_first: one untimed solve first (the exact solvers factor or plan on their first solve
+// and reuse that for every later solve on the same grid, as in a simulation).
+void pressure_solve(benchmark::State& state, std::unique_ptr<PressureSolver> solver, bool set_up_first) {
   const int n = static_cast<int>(state.range(0));
   const PoissonOperator op(MacGrid(n, n, 1.0, 1.0), Boundaries::all(BoundaryType::no_slip));
-  PressureSolverSettings settings;
-  settings.relative_tolerance = 1e-6;
-  settings.max_iterations = 1000000;
-  settings.sor_omega = optimal_sor_omega(n, n);
-  auto solver = make_pressure_solver(name, settings);
   const std::vector<double> b = benchmark_rhs(n);
   std::vector<double> p(b.size());
+  if (set_up_first) solver->solve(op, b, p);
   int iterations = 0;
   for (auto _ : state) {
     std::fill(p.begin(), p.end(), 0.0);
@@ -53,8 +55,28 @@ void pressure_solve(benchmark::State& state, const char* name) {
                                                            benchmark::Counter::kInvert);
 }
 
+void pressure_solve(benchmark::State& state, const char* name, bool set_up_first = false) {
+  const int n = static_cast<int>(state.range(0));
+  PressureSolverSettings settings;
+  settings.relative_tolerance = 1e-6;
+  settings.max_iterations = 1000000;
+  settings.sor_omega = optimal_sor_omega(n, n);
+  pressure_solve(state, make_pressure_solver(name, settings), set_up_first);
+}
+
 void BM_PressureSolve_Multigrid(benchmark::State& state) { pressure_solve(state, "multigrid"); }
 void BM_PressureSolve_Sor(benchmark::State& state) { pressure_solve(state, "sor"); }
+void BM_PressureSolve_Direct(benchmark::State& state) { pressure_solve(state, "direct", true); }
+// The transform solver as used ("fft": row DCT-II by a DFT + Thomas along y) and its two
+// other methods, for old-vs-new in one process: FFTW r2r along the rows + Thomas, and the
+// original 2D r2r transform (REDFT10/REDFT01 both ways).
+void BM_PressureSolve_Fft(benchmark::State& state) { pressure_solve(state, "fft", true); }
+void BM_PressureSolve_FftR2rRows(benchmark::State& state) {
+  pressure_solve(state, std::make_unique<FftPoissonSolver>(FftPoissonMethod::r2r_rows_then_tridiagonal), true);
+}
+void BM_PressureSolve_FftR2r2d(benchmark::State& state) {
+  pressure_solve(state, std::make_unique<FftPoissonSolver>(FftPoissonMethod::r2r_2d), true);
+}
 
 void fluid_step(benchmark::State& state, const char* name, bool extrapolate_pressure = true) {
   const int n = static_cast<int>(state.range(0));
@@ -132,6 +154,10 @@ void BM_FluidStep_SemiLagrangian_PlainWarmStart(benchmark::State& state) {
 
 BENCHMARK(BM_PressureSolve_Multigrid)->RangeMultiplier(2)->Range(32, 1024)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PressureSolve_Sor)->RangeMultiplier(2)->Range(32, 512)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PressureSolve_Fft)->Arg(60)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureSolve_FftR2rRows)->Arg(60)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureSolve_FftR2r2d)->Arg(60)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureSolve_Direct)->Arg(60)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FluidStep_Eulerian)->RangeMultiplier(2)->Range(64, 512)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Advection<advect_velocity>)->Name("BM_Advection/fast")->RangeMultiplier(2)->Range(128, 512)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Advection<advect_velocity_reference>)->Name("BM_Advection/reference")->RangeMultiplier(2)->Range(128, 512)->Unit(benchmark::kMillisecond);
