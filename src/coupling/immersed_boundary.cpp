@@ -207,18 +207,21 @@ CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
   return report;
 }
 
-void ImmersedBoundary::project_spread_forces(std::span<Vec2> forces) {
-  fluid::Velocity& w = scratch_.velocity;
+void ImmersedBoundary::spread_to_interior_faces(std::span<Vec2> forces, fluid::Velocity& w) {
   w.u.fill(0.0);
   w.v.fill(0.0);
-  const double rho = fluid_.settings().density_kg_per_m3;
   mask_target_forces(forces);  // targets hold the body from outside; they push no fluid
-  spread_forces(body_.points.position, forces, settings_.kernel, rho, w);
+  spread_forces(body_.points.position, forces, settings_.kernel, fluid_.settings().density_kg_per_m3, w);
   const fluid::MacGrid& g = scratch_.grid;
   keep_only(w.u, fluid::interior_u_faces(g, homogeneous_));
   keep_only(w.v, fluid::interior_v_faces(g, homogeneous_));
+}
+
+void ImmersedBoundary::project_spread_forces(std::span<Vec2> forces) {
+  fluid::Velocity& w = scratch_.velocity;
+  spread_to_interior_faces(forces, w);
   fluid::apply_velocity_boundaries(w, homogeneous_);
-  projector_.project(scratch_, homogeneous_, 1.0, rho);
+  projector_.project(scratch_, homogeneous_, 1.0, fluid_.settings().density_kg_per_m3);
 }
 
 void ImmersedBoundary::apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers) {
@@ -239,30 +242,51 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   Eigen::SparseMatrix<double> stiffness;
   assemble_stiffness(stiffness);
 
-  // 1. The fluid alone (advection, diffusion, projection) over the step: u_L.
-  fluid::FaceAccelerations& acc = fluid_.body_acceleration();
-  acc.u.fill(0.0);
-  acc.v.fill(0.0);
-  report.fluid = fluid_.step(dt_s);
+  // 2. (below) is backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ,
+  //    i.e. A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From a guess x0 of the
+  //    increment (the last step's), the correction e = ΔX − x0 solves
+  //    A e = Δt U_L − x0 + Δt² R (F + K x0) = Δt J P (u* + Δt S (F + K x0) / ρ) − x0,
+  //    and GMRES runs from zero.
+  // 1. The fluid over the step, u_L = P u* (advection, diffusion, projection). Where the fluid step
+  //    is affine in the body acceleration (Eulerian: one projection of u* + Δt a), the guess's
+  //    forces ride along as that acceleration: one projection gives both u_L + Δt P S (F + K x0)/ρ
+  //    and the right-hand side. Otherwise the forces are projected separately.
+  const double dt2 = dt_s * dt_s;
+  const Eigen::VectorXd f0 = flatten(force_);
   const auto& x = body_.points.position;
+  fluid::FaceAccelerations& acc = fluid_.body_acceleration();
+  const bool merged = fluid_.projects_body_acceleration_linearly() && dt_s <= fluid_.stable_time_step();
+  Eigen::VectorXd x0;
+  if (last_increment_.size() == f0.size()) x0 = last_increment_;
+  else if (merged) x0 = dt_s * flatten(body_.points.velocity);  // first step: the markers' own motion
+  if (merged) {
+    unflatten(f0 + stiffness * x0, work_);
+    spread_to_interior_faces(work_, acc);
+  } else {
+    acc.u.fill(0.0);
+    acc.v.fill(0.0);
+  }
+  report.fluid = fluid_.step(dt_s);
+  if (merged) {
+    acc.u.fill(0.0);
+    acc.v.fill(0.0);
+  }
   velocity_.resize(x.size());
   interpolate_velocities(fluid_.state().velocity, x, settings_.kernel, velocity_);
   if (has_targets_)  // target points move along their path: ΔX is known
     for (std::size_t p = 0; p < x.size(); ++p)
       if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + dt_s) - x[p]) / dt_s;
 
-  // 2. Backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ, i.e.
-  //    A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From the last step's increment x0,
-  //    the correction e = ΔX − x0 solves A e = Δt U_L − x0 + Δt² R (F + K x0): one response for the
-  //    right-hand side, and GMRES from zero.
-  const double dt2 = dt_s * dt_s;
+  // 2. The right-hand side, then GMRES.
   const Eigen::VectorXd fluid_velocity = flatten(velocity_);
-  const Eigen::VectorXd f0 = flatten(force_);
-  const Eigen::VectorXd x0 = last_increment_.size() == f0.size() ? last_increment_ : Eigen::VectorXd(dt_s * fluid_velocity);
-  Eigen::VectorXd response;
-  apply_response(f0 + stiffness * x0, response);
-  base_field_ = scratch_.velocity;  // P S (F + K x0) / ρ
-  const Eigen::VectorXd rhs = dt_s * fluid_velocity - x0 + dt2 * response;
+  if (x0.size() != f0.size()) x0 = dt_s * fluid_velocity;
+  Eigen::VectorXd rhs = dt_s * fluid_velocity - x0;
+  if (!merged) {
+    Eigen::VectorXd response;
+    apply_response(f0 + stiffness * x0, response);
+    base_field_ = scratch_.velocity;  // P S (F + K x0) / ρ
+    rhs += dt2 * response;
+  }
   // Each operator application spreads K v_k and projects it; keep those fields, so that the
   //    end-of-step force field P S K e is their combination with GMRES's coefficients.
   std::size_t applied = 0;
@@ -280,23 +304,22 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   const Eigen::VectorXd dx = x0 + correction;
   last_increment_ = dx;
 
-  // 3. Apply the end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ.
-  fluid::Velocity& field = base_field_;
-  if (report.krylov.coefficients_valid && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
-    for (Eigen::Index k = 0; k < coefficients.size(); ++k) {
-      const fluid::Velocity& g = basis_fields_[static_cast<std::size_t>(k)];
-      const double c = coefficients[k];
-      for (std::size_t i = 0; i < field.u.raw().size(); ++i) field.u.raw()[i] += c * g.u.raw()[i];
-      for (std::size_t i = 0; i < field.v.raw().size(); ++i) field.v.raw()[i] += c * g.v.raw()[i];
-    }
-  } else {  // GMRES restarted or stopped early: project the end-of-step forces afresh
-    unflatten(f0 + stiffness * dx, work_);
-    project_spread_forces(work_);
-    field = scratch_.velocity;
-  }
+  // 3. The end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ. The fluid holds u_L, plus
+  //    Δt P S (F + K x0) / ρ when merged; the rest is Δt P S K e / ρ.
   fluid::Velocity& u = fluid_.state().velocity;
-  for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += dt_s * field.u.raw()[k];
-  for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += dt_s * field.v.raw()[k];
+  auto add = [&u](double c, const fluid::Velocity& g) {
+    for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += c * g.u.raw()[k];
+    for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += c * g.v.raw()[k];
+  };
+  if (report.krylov.coefficients_valid && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
+    if (!merged) add(dt_s, base_field_);
+    for (Eigen::Index k = 0; k < coefficients.size(); ++k)
+      add(dt_s * coefficients[k], basis_fields_[static_cast<std::size_t>(k)]);
+  } else {  // GMRES restarted or stopped early: project the end-of-step forces afresh
+    unflatten(merged ? Eigen::VectorXd(stiffness * correction) : Eigen::VectorXd(f0 + stiffness * dx), work_);
+    project_spread_forces(work_);
+    add(dt_s, scratch_.velocity);
+  }
   fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
   move_markers_with_fluid(dt_s);
   return report;

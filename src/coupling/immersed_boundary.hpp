@@ -87,6 +87,8 @@ class ImmersedBoundary {
   void apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers);
   /// Spreads forces into scratch_.velocity as accelerations and makes them divergence-free.
   void project_spread_forces(std::span<Vec2> forces);
+  /// w = S F / ρ on the interior faces (eq. 4.19), zero elsewhere; target points spread nothing.
+  void spread_to_interior_faces(std::span<Vec2> forces, fluid::Velocity& w);
   /// Where target point p is at time t (pinned: where it is; prescribed: on its path).
   Vec2 target_position(std::size_t p, double t) const;
   /// Zeroes the entries of target points: they spread no force and are not moved by the fluid.
@@ -104,7 +106,7 @@ class ImmersedBoundary {
   fluid::Boundaries homogeneous_;
   std::vector<Vec2> force_, velocity_, work_;
   Eigen::VectorXd last_increment_;
-  fluid::Velocity base_field_;                 ///< P S (F + K x0) / ρ of the current step
+  fluid::Velocity base_field_;                 ///< P S (F + K x0) / ρ of the current step (when not merged)
   std::vector<fluid::Velocity> basis_fields_;  ///< P S K v_k / ρ for GMRES's basis vectors v_k
   std::vector<char> is_target_;  ///< pinned or prescribed points: Peskin's target points
   bool has_targets_ = false;

@@ -14,6 +14,8 @@ class EulerianSolver final : public FluidSolver {
   /// into stable sub-steps according to settings().time_step_policy.
   StepReport step(double dt_s) override;
   double stable_time_step() const override;
+  /// The predictor (eq. 4.6) adds Δt·a on the interior faces, then one projection.
+  bool projects_body_acceleration_linearly() const override { return true; }
   /// γ used in the last step.
   double last_donor_cell_blend() const { return last_gamma_; }
 

@@ -63,6 +63,9 @@ class FluidSolver {
   virtual StepReport step(double dt_s) = 0;
   /// Largest Δt (s) the solver accepts in one step now (infinity when unconditionally stable).
   virtual double stable_time_step() const = 0;
+  /// True when a step of at most stable_time_step() ends with P(u* + Δt a): the body acceleration
+  /// enters only as Δt·a added before the one projection, so the step is affine in a.
+  virtual bool projects_body_acceleration_linearly() const { return false; }
 
   FlowState& state() { return state_; }
   const FlowState& state() const { return state_; }

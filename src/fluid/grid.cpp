@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -32,13 +33,27 @@ Field::Field(const MacGrid& grid, Staggering staggering, double value)
 void Field::fill(double value) { std::fill(data_.begin(), data_.end(), value); }
 
 double Field::max_abs_interior() const {
-  double m = 0.0;
-  for (int j = 0; j < count_y_; ++j)
-    for (int i = 0; i < count_x_; ++i) {
-      const double a = std::abs((*this)(i, j));
-      if (!(a <= m)) m = a;  // propagates NaN
+  // Four running maxima per row break the dependency chain so the compiler can use packed max
+  // instructions; NaN is tracked apart, as a comparison with NaN is false.
+  double m[4] = {0.0, 0.0, 0.0, 0.0};
+  bool nan = false;
+  for (int j = 0; j < count_y_; ++j) {
+    const double* row = ptr(0, j);
+    int i = 0;
+    for (; i + 4 <= count_x_; i += 4)
+      for (int l = 0; l < 4; ++l) {
+        const double a = std::abs(row[i + l]);
+        m[l] = a > m[l] ? a : m[l];
+        nan |= a != a;
+      }
+    for (; i < count_x_; ++i) {
+      const double a = std::abs(row[i]);
+      m[0] = a > m[0] ? a : m[0];
+      nan |= a != a;
     }
-  return m;
+  }
+  if (nan) return std::numeric_limits<double>::quiet_NaN();
+  return std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
 }
 
 }  // namespace jellysim::fluid

@@ -1,6 +1,8 @@
 // MAC grid geometry, staggering, world↔grid conversion and bilinear sampling.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "fluid/boundary.hpp"
 #include "fluid/grid.hpp"
 
@@ -44,6 +46,25 @@ TEST(Field, BilinearSamplingIsExactForLinearFunctions) {
       for (int i = -1; i <= f.count_x(); ++i) f(i, j) = linear(f.position(i, j));
     for (Vec2 p : {Vec2{0.31, -0.19}, Vec2{0.77, 1.1}, Vec2{1.3, 1.8}, Vec2{0.5, 0.5}})
       EXPECT_NEAR(f.sample(p), linear(p), 1e-12);
+  }
+}
+
+// The largest |value| over the interior: ghosts ignored, every position in a row counts (rows of
+// 7 and 8 u-faces test the unrolled part and the remainder), and NaN anywhere is reported.
+TEST(Field, MaxAbsInteriorSeesEverySampleAndNaN) {
+  for (int nx : {6, 7}) {
+    Field u(MacGrid(nx, 3, 1.0, 1.0), kXFaces);
+    EXPECT_EQ(u.max_abs_interior(), 0.0);
+    u(-1, 1) = 100.0;  // a ghost
+    EXPECT_EQ(u.max_abs_interior(), 0.0);
+    for (int j = 0; j < u.count_y(); ++j)
+      for (int i = 0; i < u.count_x(); ++i) {
+        Field f = u;
+        f(i, j) = -2.5;
+        ASSERT_EQ(f.max_abs_interior(), 2.5) << i << ", " << j;
+        f(i, j) = std::nan("");
+        ASSERT_TRUE(std::isnan(f.max_abs_interior())) << i << ", " << j;
+      }
   }
 }
 

@@ -27,7 +27,7 @@ double mirror_mismatch(const std::vector<Vec2>& u, double axis_x) {
 
 // Ten contraction cycles of the default scene (a centred bell in a symmetric tank, so the
 // simulation keeps its mirror symmetry, tank.symmetry = "auto"): the bell stays structurally sound,
-// moves along its axis by more than one bell height (measured 18.1 cm, 6.5 bell heights) with a
+// moves along its axis by more than one bell height (measured 18.0 cm, 6.4 bell heights) with a
 // lateral drift under the 5 % of that (measured 6e-17 m: round-off of the centroid), and
 // its volume oscillates at the contraction frequency.
 TEST(SlowSwim, DefaultJellyfishSwimsAlongItsAxis) {
