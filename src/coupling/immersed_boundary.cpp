@@ -32,9 +32,15 @@ std::string format_number(double v) {
 /// Zeroes every stored sample of a face field outside the half-open range (boundary faces and
 /// ghosts): a body force acts only where the momentum equation is solved.
 void keep_only(fluid::Field& f, const fluid::FaceRange& r) {
-  for (int j = -1; j <= f.count_y(); ++j)
-    for (int i = -1; i <= f.count_x(); ++i)
-      if (i < r.i_begin || i >= r.i_end || j < r.j_begin || j >= r.j_end) f(i, j) = 0.0;
+  for (int j = -1; j <= f.count_y(); ++j) {
+    double* row = f.ptr(0, j);
+    if (j < r.j_begin || j >= r.j_end) {
+      std::fill(row - 1, row + f.count_x() + 1, 0.0);  // the whole row, ghosts included
+    } else {
+      std::fill(row - 1, row + r.i_begin, 0.0);
+      std::fill(row + r.i_end, row + f.count_x() + 1, 0.0);
+    }
+  }
 }
 
 void add_block(std::vector<Triplet>& t, int a, int b, const Mat2& d) {
@@ -78,7 +84,8 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
       time_s_(fluid.time_s()),
       projector_(fluid::make_pressure_solver(fluid.settings().pressure_solver, fluid.settings().pressure)),
       scratch_(fluid.state().grid),
-      homogeneous_(fluid.settings().boundaries.homogeneous()) {
+      homogeneous_(fluid.settings().boundaries.homogeneous()),
+      base_field_(fluid.state().grid) {
   if (!(settings_.safety_factor > 0.0)) throw std::invalid_argument("coupling safety factor must be > 0");
   if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
@@ -284,7 +291,7 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   if (!merged) {
     Eigen::VectorXd response;
     apply_response(f0 + stiffness * x0, response);
-    base_field_ = scratch_.velocity;  // P S (F + K x0) / ρ
+    std::swap(base_field_, scratch_.velocity);  // P S (F + K x0) / ρ
     rhs += dt2 * response;
   }
   // Each operator application spreads K v_k and projects it; keep those fields, so that the
@@ -293,8 +300,9 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     Eigen::VectorXd rkv;
     apply_response(stiffness * in, rkv);
+    // Keep the field by swapping buffers (the next projection overwrites all of scratch_).
     if (applied >= basis_fields_.size()) basis_fields_.push_back(scratch_.velocity);
-    else basis_fields_[applied] = scratch_.velocity;
+    else std::swap(basis_fields_[applied], scratch_.velocity);
     ++applied;
     out = in - dt2 * rkv;
   };

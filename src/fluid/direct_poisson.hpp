@@ -16,6 +16,7 @@ namespace jellysim::fluid {
 class DirectPoissonSolver final : public PressureSolver {
  public:
   std::string_view name() const override { return "direct"; }
+  bool uses_initial_guess() const override { return false; }
   PressureSolveReport solve(const PoissonOperator& op, std::span<const double> b, std::span<double> p) override;
 
  private:

@@ -50,6 +50,7 @@ class FftPoissonSolver final : public PressureSolver {
   FftPoissonSolver& operator=(const FftPoissonSolver&) = delete;
 
   std::string_view name() const override { return "fft"; }
+  bool uses_initial_guess() const override { return false; }
   PressureSolveReport solve(const PoissonOperator& op, std::span<const double> b, std::span<double> p) override;
 
   /// Implementation parts (defined in fft_poisson.cpp).

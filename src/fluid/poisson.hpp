@@ -91,6 +91,8 @@ class PressureSolver {
   virtual std::string_view name() const = 0;
   virtual PressureSolveReport solve(const PoissonOperator& op, std::span<const double> b,
                                     std::span<double> p) = 0;
+  /// False for exact solvers, which ignore what p holds on entry (no initial guess is prepared).
+  virtual bool uses_initial_guess() const { return true; }
 };
 
 /// "sor", "multigrid", "direct" or "fft"; throws std::invalid_argument for other names.

@@ -69,7 +69,8 @@ PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, do
   // Initial guess φ = p/ρ, or the extrapolation φ_n + (φ_n − φ_{n−1})·Δt/Δt_n when the state's
   // pressure is still exactly what the last projection stored (nobody edited it) on the same
   // grid. The extrapolation is written while the pressure is compared; a mismatch redoes the guess.
-  const bool history = extrapolate_ && have_previous_ && last_phi_.size() == n && previous_phi_.size() == n &&
+  const bool guess = solver_->uses_initial_guess();
+  const bool history = guess && extrapolate_ && have_previous_ && last_phi_.size() == n && previous_phi_.size() == n &&
                        last_dt_s_ > 0.0;
   const double ratio = history ? dt_s / last_dt_s_ : 0.0;
   bool unchanged = history;
@@ -91,7 +92,7 @@ PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, do
         phi[i] = last[i] + (last[i] - previous[i]) * ratio;
       }
       unchanged = unchanged && same;
-    } else {
+    } else if (guess) {
       for (int i = 0; i < g.nx; ++i) phi[i] = pr[i] * inv_rho;
     }
   }
