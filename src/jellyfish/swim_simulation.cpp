@@ -315,9 +315,11 @@ std::string SwimSimulation::check() const {
   return {};
 }
 
-SwimStep SwimSimulation::step(double max_dt_s) {
+SwimStep SwimSimulation::step(double max_dt_s) { return advance(std::min(coupling_->next_time_step(), max_dt_s)); }
+
+SwimStep SwimSimulation::advance(double dt_s) {
   SwimStep s;
-  s.dt_s = std::min(coupling_->next_time_step(), max_dt_s);
+  s.dt_s = dt_s;
   if (!(s.dt_s >= settings_.coupling.min_time_step_s)) {
     s.failure = "numerical instability: the stable time step fell to " + std::to_string(s.dt_s) +
                 " s, below min_time_step" + when(time_s(), coupling_->steps());
@@ -361,7 +363,7 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
       const double remaining = frame_time - time_s();
       const double natural = coupling_->next_time_step();
       const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
-      const SwimStep s = step(limit);
+      const SwimStep s = advance(limit);
       if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
         stats.smallest_step_s = std::min(stats.smallest_step_s, s.dt_s);
         stats.largest_step_s = std::max(stats.largest_step_s, s.dt_s);

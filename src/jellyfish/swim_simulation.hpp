@@ -132,6 +132,8 @@ class SwimSimulation {
   void move_obstacle(std::size_t obstacle, Vec2 delta_m);
 
  private:
+  /// One coupled step of exactly dt_s (at most the stable step), then the checks.
+  SwimStep advance(double dt_s);
   void actuate(double t);
   void copy_back_to_jellyfish();
   void set_up_mirror_symmetry();
