@@ -111,8 +111,10 @@ std::vector<Vec2> obstacle_outline(const ObstacleSpec& s) {
 
 std::vector<Vec2> obstacle_markers(const ObstacleSpec& s, double max_spacing_m) {
   if (s.shape == ObstacleShape::circle) {
-    // Evenly around the circle, exactly on it.
-    const int n = std::max(8, static_cast<int>(std::ceil(2.0 * std::numbers::pi * s.radius_m / max_spacing_m)));
+    // Evenly around the circle, exactly on it; an even count, so that the markers are mirror
+    // images of each other about the circle's vertical and horizontal diameters.
+    int n = std::max(8, static_cast<int>(std::ceil(2.0 * std::numbers::pi * s.radius_m / max_spacing_m)));
+    n += n % 2;
     std::vector<Vec2> p;
     for (int k = 0; k < n; ++k) {
       const double a = 2.0 * std::numbers::pi * k / n;

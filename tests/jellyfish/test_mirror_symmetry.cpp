@@ -39,6 +39,12 @@ centre = [0.4, 0.6]
 size = [0.06, 0.02]
 )"));  // a fixed box on the axis ahead of the bell
   EXPECT_TRUE(kept(R"(
+[[objects]]
+type = "circle"
+centre = [0.4, 0.6]
+radius = 0.03
+)"));  // a circle (29 markers by spacing, rounded up to an even 30)
+  EXPECT_TRUE(kept(R"(
 tank.current = [0.0, 0.02]
 tank.boundaries = ["free-slip", "free-slip", "inflow", "outflow"]
 tank.inflow_velocity = [0.0, 0.02]
