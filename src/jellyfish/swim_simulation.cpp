@@ -248,7 +248,10 @@ void SwimSimulation::keep_mirror_symmetry() {
 void SwimSimulation::end_mirror_symmetry(const std::string& why) {
   if (!mirror_active_) return;
   mirror_active_ = false;
-  mirror_note_ = "the mirror symmetry ended at t = " + std::to_string(time_s()) + " s: " + why;
+  std::ostringstream note;
+  note.precision(4);
+  note << "ended at t = " << time_s() << " s: " << why;
+  mirror_note_ = note.str();
 }
 
 void SwimSimulation::edit_of_jellyfish(std::size_t j, const char* what) {

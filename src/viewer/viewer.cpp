@@ -274,6 +274,13 @@ void Viewer::draw_status() {
   } else {
     ImGui::TextColored(ImVec4(0.4f, 1, 0.5f, 1), "Real time");
   }
+  if (sim_->mirror_symmetric()) {
+    ImGui::TextDisabled("mirror symmetry: kept");
+  } else if (!sim_->mirror_symmetry_note().empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("mirror symmetry: %s", sim_->mirror_symmetry_note().c_str());
+    ImGui::PopStyleColor();
+  }
   if (recorder_.active()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "REC %d frames", recorder_.frames());
   if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
 }
@@ -504,6 +511,7 @@ nlohmann::json Viewer::state_json() const {
   state["time_s"] = sim_->time_s();
   state["steps"] = sim_->steps();
   state["paused"] = paused_;
+  state["mirror_symmetry"] = sim_->mirror_symmetric();
   nlohmann::json jellyfish = nlohmann::json::array();
   for (std::size_t i = 0; i < sim_->jellyfish_count(); ++i) {
     const JellyfishParams& p = params_.jellyfish[i];

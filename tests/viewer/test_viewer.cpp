@@ -90,6 +90,9 @@ TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
   const auto after = timeline_entry(stats, "22 mark dragged")["jellyfish"][0]["centroid_m"];
   EXPECT_NEAR(after[0].get<double>() - before[0].get<double>(), 0.1, 2e-3);
   EXPECT_NEAR(after[1].get<double>() - before[1].get<double>(), 0.0, 2e-3);
+  // The default scene keeps its mirror symmetry until the sideways drag breaks it.
+  EXPECT_TRUE(still_paused["mirror_symmetry"].get<bool>());
+  EXPECT_FALSE(timeline_entry(stats, "22 mark dragged")["mirror_symmetry"].get<bool>());
 
   // The parameters took effect, and the simulation ran on after the second pause toggle.
   const auto& state = stats["state"];
