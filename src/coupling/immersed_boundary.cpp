@@ -249,11 +249,11 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   Eigen::SparseMatrix<double> stiffness;
   assemble_stiffness(stiffness);
 
-  // 2. (below) is backward Euler for the exchange: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ,
-  //    i.e. A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From a guess x0 of the
-  //    increment (the last step's), the correction e = ΔX − x0 solves
-  //    A e = Δt U_L − x0 + Δt² R (F + K x0) = Δt J P (u* + Δt S (F + K x0) / ρ) − x0,
-  //    and GMRES runs from zero.
+  // The exchange is backward Euler: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ, i.e.
+  // A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From a guess x0 of the increment (the
+  // last step's), the correction e = ΔX − x0 solves
+  //   A e = Δt U_L − x0 + Δt² R (F + K x0) = Δt J P (u* + Δt S (F + K x0) / ρ) − x0,
+  // by GMRES from zero (step 2).
   // 1. The fluid over the step, u_L = P u* (advection, diffusion, projection). Where the fluid step
   //    is affine in the body acceleration (Eulerian: one projection of u* + Δt a), the guess's
   //    forces ride along as that acceleration: one projection gives both u_L + Δt P S (F + K x0)/ρ
