@@ -239,8 +239,9 @@ int main(int argc, char** argv) {
   std::string sweep_scene_path;
   std::vector<double> sweep_frequencies;
   auto* sweep = app.add_subcommand(
-      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14), one simulation per "
-               "frequency on every core: sweep.csv, sweep.png, trajectories.png, summary.json");
+      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, each "
+               "frequency at sweep.placements sub-cell positions of the bell (default 8; the coarse scene is "
+               "chaotic): sweep.csv (mean and spread), sweep_runs.csv, sweep.png, trajectories.png, summary.json");
   sweep->add_option("scene", sweep_scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
   sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")

@@ -205,73 +205,160 @@ std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& 
 
 // ------------------------------------------------------------ frequency sweep (Figs 8.13/8.14)
 
-struct SweepResult {
+struct SweepRun {
+  std::size_t frequency_index = 0;  ///< into sweep.frequencies (which may repeat a value)
   double frequency = 0.0;
+  int placement = 0;      ///< k of the shift k / placements of a cell
+  double offset_m = 0.0;  ///< the first jellyfish's shift along its swimming axis
   SwimRecording rec;
+  double distance() const { return rec.metrics.empty() ? 0.0 : rec.metrics.back().position; }
+  double lateral() const { return rec.metrics.empty() ? 0.0 : rec.metrics.back().lateral; }
+  bool sound() const { return rec.stats.failure.empty(); }
 };
+
+/// The fluid cell's extent along a unit direction (exact for directions along the axes).
+double cell_extent_along(const jellyfish::TankSpec& tank, Vec2 direction) {
+  return std::abs(direction.x) * tank.width_m / tank.cells_x + std::abs(direction.y) * tank.height_m / tank.cells_y;
+}
+
+/// Every (frequency, placement) run of the sweep. The first jellyfish is shifted along its swimming
+/// axis by k / placements of a fluid cell: on the coarse default scene the distance after a few
+/// cycles is chaotic (a 0.1 µm shift of the start changes it by half, docs/jellyfish.md "Grid
+/// sensitivity"), so one run per frequency is one sample and the mean over placements the estimate.
+std::vector<SweepRun> plan_sweep(const jellyfish::SwimSettings& base, const std::vector<double>& frequencies,
+                                 int placements) {
+  const Vec2 axis = rotated(Vec2{0.0, 1.0}, base.jellyfish().tilt_rad);
+  const double cell = cell_extent_along(base.tank, axis);
+  std::vector<SweepRun> runs;
+  for (std::size_t i = 0; i < frequencies.size(); ++i) {
+    for (int k = 0; k < placements; ++k) {
+      SweepRun r;
+      r.frequency_index = i;
+      r.frequency = frequencies[i];
+      r.placement = k;
+      r.offset_m = cell * k / placements;
+      runs.push_back(std::move(r));
+    }
+  }
+  return runs;
+}
+
+/// Mean, spread and failures of one frequency's runs. The statistics cover the sound runs (all of
+/// them when every run failed: the distance up to the failure).
+struct SweepPoint {
+  double frequency = 0.0, mean = 0.0, min = 0.0, max = 0.0, std_dev = 0.0, lateral = 0.0, wall_s = 0.0;
+  int runs = 0, failed = 0;
+};
+
+SweepPoint summarise_frequency(const std::vector<SweepRun>& runs, std::size_t frequency_index) {
+  SweepPoint p;
+  std::vector<const SweepRun*> mine, sound;
+  for (const auto& r : runs) {
+    if (r.frequency_index != frequency_index) continue;
+    p.frequency = r.frequency;
+    mine.push_back(&r);
+    if (r.sound()) sound.push_back(&r);
+    p.wall_s += r.rec.stats.wall_seconds;
+  }
+  p.runs = static_cast<int>(mine.size());
+  p.failed = p.runs - static_cast<int>(sound.size());
+  const std::vector<const SweepRun*>& used = sound.empty() ? mine : sound;
+  p.min = INFINITY;
+  p.max = -INFINITY;
+  for (const SweepRun* r : used) {
+    p.mean += r->distance() / used.size();
+    p.lateral += r->lateral() / used.size();
+    p.min = std::min(p.min, r->distance());
+    p.max = std::max(p.max, r->distance());
+  }
+  for (const SweepRun* r : used) p.std_dev += (r->distance() - p.mean) * (r->distance() - p.mean);
+  p.std_dev = used.size() > 1 ? std::sqrt(p.std_dev / (used.size() - 1)) : 0.0;  // sample standard deviation
+  return p;
+}
 
 std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
   const std::vector<double> frequencies = ctx.config.numbers("sweep.frequencies", io::Range{0.0, 100.0, true, false});
+  const int placements = static_cast<int>(ctx.config.integer("sweep.placements", 1, 64));
   const int threads_wanted = static_cast<int>(ctx.config.integer("sweep.threads", 0, 256));
-  return [base, frequencies, threads_wanted, ctx](const io::OutputDir& out) {
+  return [base, frequencies, placements, threads_wanted, ctx](const io::OutputDir& out) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<SweepResult> results(frequencies.size());
+    std::vector<SweepRun> runs = plan_sweep(base, frequencies, placements);
     std::atomic<std::size_t> next{0};
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const unsigned threads = std::min<unsigned>(threads_wanted > 0 ? static_cast<unsigned>(threads_wanted) : cores,
-                                                static_cast<unsigned>(frequencies.size()));
+                                                static_cast<unsigned>(runs.size()));
     auto worker = [&]() {
-      for (std::size_t k = next++; k < frequencies.size(); k = next++) {
+      for (std::size_t k = next++; k < runs.size(); k = next++) {
         jellyfish::SwimSettings s = base;
-        s.school.front().frequency_hz = frequencies[k];
-        results[k].frequency = frequencies[k];
-        results[k].rec = run_swim(s, {}, nullptr, {});
+        jellyfish::JellyfishSpec& jelly = s.school.front();
+        jelly.frequency_hz = runs[k].frequency;
+        jelly.aperture_centre_m += runs[k].offset_m * rotated(Vec2{0.0, 1.0}, jelly.tilt_rad);
+        runs[k].rec = run_swim(s, {}, nullptr, {});
       }
     };
     std::vector<std::thread> pool;
     for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
     for (auto& t : pool) t.join();
-    io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "wall_seconds", "failed"});
+
+    io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "wall_seconds", "failed",
+                       "placements", "distance_min", "distance_max", "distance_std"});
+    io::CsvWriter run_csv({"frequency", "placement", "offset", "distance_travelled", "lateral_drift", "wall_seconds",
+                           "failed"});
     render::ChartSpec distance, trajectories;
     distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
     distance.x_label = "frequency (Hz)";
     distance.y_label = "distance (m)";
-    distance.series.emplace_back();
-    distance.series.back().label = "distance in " + io::format_double(base.duration_s) + " s";
-    distance.series.back().markers = true;
-    trajectories.title = "Trajectories (Fig. 8.13)";
+    distance.series.resize(2);
+    distance.series[0].label = "mean of " + std::to_string(placements) + " placements, " +
+                               io::format_double(base.duration_s) + " s";
+    distance.series[0].markers = true;
+    distance.series[1].label = "each placement (shifts of k/" + std::to_string(placements) + " cell)";
+    distance.series[1].markers = true;
+    distance.series[1].line = false;
+    trajectories.title = "Trajectories (Fig. 8.13), first placement";
     trajectories.x_label = "t (s)";
     trajectories.y_label = "position (m)";
     trajectories.legend = render::LegendCorner::TopLeft;
     nlohmann::ordered_json table = nlohmann::ordered_json::array();
-    double best = -INFINITY, best_f = 0.0;
-    for (const auto& r : results) {
-      const double d = r.rec.metrics.empty() ? 0.0 : r.rec.metrics.back().position;
-      const double lat = r.rec.metrics.empty() ? 0.0 : r.rec.metrics.back().lateral;
-      const double speed = r.rec.stats.simulated_seconds > 0 ? d / r.rec.stats.simulated_seconds : 0.0;
-      csv.row({r.frequency, d, speed, lat, r.rec.stats.wall_seconds, r.rec.stats.failure.empty() ? 0.0 : 1.0});
-      distance.series.back().x.push_back(r.frequency);
-      distance.series.back().y.push_back(d);
+    for (const auto& r : runs) {
+      run_csv.row({r.frequency, static_cast<double>(r.placement), r.offset_m, r.distance(), r.lateral(),
+                   r.rec.stats.wall_seconds, r.sound() ? 0.0 : 1.0});
+      distance.series[1].x.push_back(r.frequency);
+      distance.series[1].y.push_back(r.distance());
+      table.push_back({{"frequency", r.frequency}, {"placement", r.placement}, {"offset", r.offset_m},
+                       {"distance_travelled", r.distance()}, {"failure", r.rec.stats.failure}});
+      if (r.placement != 0) continue;
       trajectories.series.emplace_back();
       trajectories.series.back().label = io::format_double(r.frequency) + " Hz";
       for (const auto& m : r.rec.metrics) {
         trajectories.series.back().x.push_back(m.t);
         trajectories.series.back().y.push_back(m.position);
       }
-      table.push_back({{"frequency", r.frequency}, {"distance_travelled", d}, {"failure", r.rec.stats.failure}});
-      if (r.rec.stats.failure.empty() && d > best) {
-        best = d;
-        best_f = r.frequency;
+    }
+    double best = -INFINITY, best_f = 0.0;
+    for (std::size_t i = 0; i < frequencies.size(); ++i) {
+      const SweepPoint p = summarise_frequency(runs, i);
+      const double f = p.frequency;
+      const double speed = base.duration_s > 0 ? p.mean / base.duration_s : 0.0;
+      csv.row({f, p.mean, speed, p.lateral, p.wall_s, static_cast<double>(p.failed), static_cast<double>(p.runs),
+               p.min, p.max, p.std_dev});
+      distance.series[0].x.push_back(f);
+      distance.series[0].y.push_back(p.mean);
+      if (p.failed < p.runs && p.mean > best) {
+        best = p.mean;
+        best_f = f;
       }
     }
     out.write_text("sweep.csv", csv.text());
+    out.write_text("sweep_runs.csv", run_csv.text());
     write_chart(out, "sweep.png", distance);
     write_chart(out, "trajectories.png", trajectories);
     nlohmann::ordered_json fig;
-    fig["units"] = {{"frequency", "Hz"}, {"distance", "m"}, {"time", "s"}};
+    fig["units"] = {{"frequency", "Hz"}, {"distance", "m"}, {"offset", "m"}, {"time", "s"}};
     fig["best_frequency"] = best_f;
     fig["best_distance"] = std::isfinite(best) ? best : 0.0;
+    fig["placements"] = placements;
     fig["threads"] = threads;
     fig["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fig["simulated_seconds"] = base.duration_s;

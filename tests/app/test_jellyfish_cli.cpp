@@ -1,5 +1,10 @@
 // End-to-end checks of the jellyfish commands: simulate, run (the main job), sweep, experiments.
 #include <nlohmann/json.hpp>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -115,12 +120,38 @@ TEST(JellyfishCli, OvalMembraneLosesLessAreaThanTheThesis) {
   fs::remove_all(dir);
 }
 
+// Every frequency runs at every placement (the bell shifted by k/placements of a cell); sweep.csv
+// has one row per frequency with the mean and spread, sweep_runs.csv one row per run.
 TEST(JellyfishCli, SweepRunsEveryFrequency) {
   const fs::path dir = fresh("sweep");
-  const Result r = run_cli("sweep --quiet --frequencies 0.5,0.9 --duration 0.5 --out " + dir.string());
+  const Result r = run_cli("sweep --quiet --frequencies 0.5,0.9 --duration 0.5 --set sweep.placements=2 --out " +
+                           dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string csv = slurp(dir / "sweep.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "frequency,distance_travelled,mean_speed,lateral_drift,wall_seconds,failed,placements,distance_min,"
+            "distance_max,distance_std");
+  const std::string runs = slurp(dir / "sweep_runs.csv");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 5);
   EXPECT_TRUE(fs::exists(dir / "sweep.png"));
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  ASSERT_EQ(s["runs"].size(), 4u);
+  EXPECT_EQ(s["placements"].get<int>(), 2);
+  // Placement 1 starts half a cell (0.8 m / 60 / 2) further along the axis.
+  EXPECT_DOUBLE_EQ(s["runs"][1]["offset"].get<double>(), 0.8 / 60 / 2);
+  for (int f = 0; f < 2; ++f) {
+    const double a = s["runs"][2 * f]["distance_travelled"], b = s["runs"][2 * f + 1]["distance_travelled"];
+    const double mean = 0.5 * (a + b);
+    const std::string row = csv.substr(csv.find('\n', f == 0 ? 0 : csv.find('\n') + 1) + 1);
+    std::stringstream fields(row.substr(0, row.find('\n')));
+    std::vector<double> v;
+    for (std::string x; std::getline(fields, x, ',');) v.push_back(std::stod(x));
+    ASSERT_EQ(v.size(), 10u) << row;
+    EXPECT_NEAR(v[1], mean, 1e-12);
+    EXPECT_DOUBLE_EQ(v[7], std::min(a, b));
+    EXPECT_DOUBLE_EQ(v[8], std::max(a, b));
+    EXPECT_NEAR(v[9], std::abs(a - b) / std::sqrt(2.0), 1e-12);
+  }
   fs::remove_all(dir);
 }
