@@ -58,12 +58,16 @@ void SphFluid::prepare(std::size_t n) {
   first_.resize(n);
   count_.resize(n);
   grid_.reserve(capacity, 2 * parts_.size());
+  slots_.reserve(2 * parts_.size());
 }
 
 // One evaluation as phases separated by barriers (WorkerPool::run_phases):
 //   1. load the part's particles, copy them into all_*, create their mirrors (§5.1.3);
 //   2. gather the mirrors after the real particles, histogram the grid cells of the part's points;
-//   3. place the part's points in the grid (counting sort);
+//   3. place every point in the grid (counting sort) on the first thread, while the last one runs
+//      the independent side work (the body's forces); a placement shared by the threads cost each
+//      twice the whole serial one (every thread needs the full (cell, slot) prefix, and both write
+//      into the same cache lines of the sorted index);
 //   4. densities and pressures of the part's particles (eq. 5.5, p = κ_p (ρ − ρ0));
 //   5. accelerations of the part's particles (eqs. 5.6, 5.8).
 void SphFluid::evaluate(const Inputs& in, bool accelerations) {
@@ -71,7 +75,7 @@ void SphFluid::evaluate(const Inputs& in, bool accelerations) {
   using Phase = WorkerPool::Phase;
   const std::array<Phase, 5> phases{
       Phase([&](int part) { load_and_mirror(in, part); }), Phase([&](int part) { gather_and_count(part); }),
-      Phase([&](int part) { place(part); }), Phase([&](int part) { density_range(part); }),
+      Phase([&](int part) { place_and_side(in, part); }), Phase([&](int part) { density_range(part); }),
       Phase([&](int part) { acceleration_range(in, part); })};
   const std::size_t count = accelerations ? phases.size() : phases.size() - 1;
   const std::span<const Phase> run(phases.data(), count);
@@ -164,14 +168,21 @@ void SphFluid::gather_and_count(int part_index) {
   grid_.count(part.layout, all_x_.data(), offset, offset + part.mirror_x.size(), parts + p);
 }
 
-void SphFluid::place(int part_index) {
-  const std::size_t parts = parts_.size(), p = static_cast<std::size_t>(part_index);
-  const Part& part = parts_[p];
-  const auto [begin, end] = real_range(part_index);
-  const std::array<NeighbourGrid::Slot, 2> mine{NeighbourGrid::Slot{p, begin, end},
-                                                NeighbourGrid::Slot{parts + p, part.mirror_offset,
-                                                                    part.mirror_offset + part.mirror_x.size()}};
-  grid_.place(part.layout, mine, 2 * parts);
+void SphFluid::place_and_side(const Inputs& in, int part_index) {
+  const std::size_t parts = parts_.size();
+  if (part_index == 0) {
+    slots_.clear();
+    for (std::size_t p = 0; p < parts; ++p) {
+      const auto [begin, end] = real_range(static_cast<int>(p));
+      slots_.push_back({p, begin, end});
+    }
+    for (std::size_t p = 0; p < parts; ++p) {
+      const Part& part = parts_[p];
+      slots_.push_back({parts + p, part.mirror_offset, part.mirror_offset + part.mirror_x.size()});
+    }
+    grid_.place(parts_[0].layout, slots_, 2 * parts);
+  }
+  if (part_index + 1 == static_cast<int>(parts) && in.hooks != nullptr && in.hooks->side) in.hooks->side();
 }
 
 void SphFluid::density_range(int part_index) {
@@ -225,9 +236,7 @@ void SphFluid::acceleration_range(const Inputs& in, int part_index) {
     const double rho_i = rho_[i];
     a[i] = pressure * (spiky_gradient / rho_i) + viscous * (mu * viscosity_laplacian / rho_i);
   }
-  if (in.hooks == nullptr) return;
-  if (in.hooks->store) in.hooks->store(begin, end);
-  if (in.hooks->side && part_index + 1 == static_cast<int>(parts_.size())) in.hooks->side();
+  if (in.hooks != nullptr && in.hooks->store) in.hooks->store(begin, end);
 }
 
 void SphFluid::compute_density(const std::vector<Vec2>& x, const std::vector<Vec2>& v, const std::vector<double>& m) {

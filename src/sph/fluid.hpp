@@ -34,7 +34,8 @@ struct EvaluationHooks {
   std::function<void(std::size_t begin, std::size_t end)> load;
   /// Called once the accelerations on [begin, end) are final.
   std::function<void(std::size_t begin, std::size_t end)> store;
-  /// Independent work (e.g. the body's spring forces), run once by the last thread.
+  /// Independent work (e.g. the body's spring forces), run once by the last thread while the first
+  /// one builds the neighbour grid.
   std::function<void()> side;
 };
 
@@ -102,7 +103,7 @@ class SphFluid {
   // The phases, each for part `part` (see evaluate()).
   void load_and_mirror(const Inputs& in, int part);
   void gather_and_count(int part);
-  void place(int part);
+  void place_and_side(const Inputs& in, int part);
   void density_range(int part);
   void acceleration_range(const Inputs& in, int part);
 
@@ -125,6 +126,7 @@ class SphFluid {
   std::vector<std::uint32_t> origin_;  ///< the real particle each entry is (or mirrors)
   std::vector<double> rho_, p_;        ///< per real particle
   std::vector<Part> parts_;            ///< one per thread
+  std::vector<NeighbourGrid::Slot> slots_;  ///< every part's real and mirror slot, for the placement
   std::vector<std::uint32_t> first_, count_;  ///< per real particle: its slice of its part's list
 };
 
