@@ -210,6 +210,7 @@ struct SweepRun {
   double frequency = 0.0;
   int placement = 0;      ///< k of the shift k / placements of a cell
   double offset_m = 0.0;  ///< the first jellyfish's shift along its swimming axis
+  Vec2 shift_m;           ///< the same shift as a vector
   SwimRecording rec;
   double distance() const { return rec.metrics.empty() ? 0.0 : rec.metrics.back().position; }
   double lateral() const { return rec.metrics.empty() ? 0.0 : rec.metrics.back().lateral; }
@@ -237,6 +238,7 @@ std::vector<SweepRun> plan_sweep(const jellyfish::SwimSettings& base, const std:
       r.frequency = frequencies[i];
       r.placement = k;
       r.offset_m = cell * k / placements;
+      r.shift_m = r.offset_m * axis;
       runs.push_back(std::move(r));
     }
   }
@@ -293,7 +295,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
         jellyfish::SwimSettings s = base;
         jellyfish::JellyfishSpec& jelly = s.school.front();
         jelly.frequency_hz = runs[k].frequency;
-        jelly.aperture_centre_m += runs[k].offset_m * rotated(Vec2{0.0, 1.0}, jelly.tilt_rad);
+        jelly.aperture_centre_m += runs[k].shift_m;
         runs[k].rec = run_swim(s, {}, nullptr, {});
       }
     };
