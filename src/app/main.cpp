@@ -1,6 +1,5 @@
 // The jellysim command line: thin layer over the library (see docs/cli.md).
 // Exit codes: 0 success, 1 failed run, 2 bad usage or input.
-#include "app/leak_check.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/jellyfish_runs.hpp"
 #include "io/embedded_data.hpp"
@@ -211,10 +210,6 @@ int run_view(ViewCommand& v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // However the command ends, sanitizer builds check for leaks before the exit handlers run.
-  struct LeakCheckOnReturn {
-    ~LeakCheckOnReturn() { js::app::check_leaks_before_exit(); }
-  } leak_check_on_return;
   CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", JELLYSIM_VERSION);
