@@ -36,12 +36,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     for (const jellyfish::JellyfishSpec& j : settings.school)
       seeds.push_back(pipeline.geometry.noise.seed + static_cast<std::uint64_t>(j.noise_seed) - 1);
     const render::AnimationOutputs anim = render::write_animation_outputs(
-        school, seeds, pipeline, out, [terminal](std::size_t done, std::size_t total) {
+        school, seeds, pipeline, out,
+        [terminal](std::size_t done, std::size_t total) {
           if (!terminal) return;
           std::printf("\r  rendering frame %zu / %zu   ", done, total);
           if (done == total) std::printf("\n");
           std::fflush(stdout);
-        });
+        },
+        rec.obstacle_outlines);
     figures["animation"] = anim.figures();
     write_summary(out, "run", ctx.config, figures, rec.stats.failure);
     return Outcome{rec.stats.failure};

@@ -358,8 +358,13 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         if (s.jellyfish_count() > 0) rec.frames.push_back(s.jellyfish().slice_frame(s.time_s()));
         for (std::size_t j = 1; j < s.jellyfish_count(); ++j) rec.others[j - 1].push_back(s.jellyfish(j).slice_frame(s.time_s()));
         std::vector<Vec2> forces;
-        for (std::size_t o = 0; o < s.obstacle_count(); ++o) forces.push_back(s.obstacle_force(o));
+        std::vector<std::vector<Vec2>> outlines;
+        for (std::size_t o = 0; o < s.obstacle_count(); ++o) {
+          forces.push_back(s.obstacle_force(o));
+          outlines.push_back(s.obstacle_outline(o));
+        }
         rec.obstacle_forces.push_back(std::move(forces));
+        rec.obstacle_outlines.push_back(std::move(outlines));
         return {};
       },
       progress);

@@ -33,6 +33,7 @@ struct SwimRecording {
   std::vector<std::vector<jellyfish::SliceFrame>> others;        ///< jellyfish 2, 3, …
   std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
   std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
+  std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
 };
 
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).

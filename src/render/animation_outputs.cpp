@@ -10,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "geometry/obstacle_mesh.hpp"
 #include "geometry/rendering_model.hpp"
 #include "io/errors.hpp"
 #include "io/mesh_files.hpp"
@@ -141,7 +142,7 @@ constexpr const char* kViewerHtml = R"(<!doctype html>
 )";
 
 std::vector<io::GlbMaterial> glb_materials(const RenderStyle& s) {
-  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}};
+  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}, {"obstacles", s.obstacles, 0.9}};
 }
 
 void write_viewer(const PipelineSettings& s, const std::string& glb, const io::OutputDir& out,
@@ -186,6 +187,7 @@ PipelineSettings pipeline_settings_from_config(const io::Config& c, const std::s
   s.camera_azimuth_deg = c.number(p + "camera_azimuth_deg", io::Range::closed(-360.0, 360.0));
   s.camera_follow = c.number(p + "camera_follow", {0.0, 1.0, true, false});
   s.fov_y_deg = c.number(p + "fov_deg", io::Range::closed(5.0, 120.0));
+  s.obstacle_depth_m = c.number(p + "obstacle_depth", {0.0, 100.0, true, false});
   s.style.umbrella[3] = c.number(p + "umbrella_opacity", io::Range::closed(0.0, 1.0));
   s.style.tentacles[3] = c.number(p + "tentacle_opacity", io::Range::closed(0.0, 1.0));
   s.style.rim = c.number(p + "rim", io::Range::closed(0.0, 1.0));
@@ -257,12 +259,23 @@ void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::M
 
 AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
                                          const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
-                                         const io::OutputDir& out, const FrameProgress& progress) {
+                                         const io::OutputDir& out, const FrameProgress& progress,
+                                         const ObstacleFrames& obstacles) {
   if (school.empty() || school.front().empty()) throw InputError("no slice frames to render");
   if (seeds.size() != school.size()) throw InputError("one noise seed per jellyfish is needed");
   const std::vector<jellyfish::SliceFrame>& frames = school.front();
   for (const auto& series : school)
     if (series.size() != frames.size()) throw InputError("every jellyfish needs the same number of recorded frames");
+  if (!obstacles.empty() && obstacles.size() != frames.size())
+    throw InputError("the obstacles need one outline set per recorded frame");
+  std::unique_ptr<geometry::ObstaclePrisms> prisms;
+  if (!obstacles.empty() && !obstacles.front().empty()) {
+    try {
+      prisms = std::make_unique<geometry::ObstaclePrisms>(obstacles.front(), s.obstacle_depth_m);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("cannot draw the obstacles: ") + e.what());
+    }
+  }
   std::vector<geometry::GeometryBuilder> builders;
   for (std::size_t j = 0; j < school.size(); ++j) {
     geometry::GeometrySettings gs = s.geometry;
@@ -294,10 +307,17 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       g.time_s = parts.front().time_s;
       merge_meshes(parts, g.mesh);
     }
+    if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);  // frames the jellyfish only
+    if (prisms) {
+      try {
+        prisms->append(obstacles[k], g.mesh);
+      } catch (const std::invalid_argument& e) {
+        throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
+      }
+    }
     geometry_s += seconds_since(t0);
     if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
       throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
-    if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);
     Vec3 centre{};
     for (const auto& part : parts) centre = centre + (1.0 / static_cast<double>(parts.size())) * umbrella_centre(part);
     const Camera view = camera->next(centre);

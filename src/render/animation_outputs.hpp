@@ -30,6 +30,9 @@ struct PipelineSettings {
   double camera_azimuth_deg = 25.0;   ///< around the axis, from the slice normal (+z)
   double camera_follow = 0.25;        ///< per frame, the fraction of the way the target moves to the jellyfish (1: rigid)
   double fov_y_deg = 40.0;
+  /// The scene's obstacles are drawn as prisms this long across the slice plane (m); the 2D
+  /// simulation treats them as infinitely long (geometry/obstacle_mesh.hpp).
+  double obstacle_depth_m = 0.12;
   /// Multisampling of the rendered frames (OffscreenRenderer; 1: none). Not a config field: the
   /// video keeps 4×; the interactive setting is 1 with style.per_vertex_lighting (docs/rendering.md).
   int samples = 4;
@@ -72,13 +75,18 @@ AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame
                                          const PipelineSettings& settings, const io::OutputDir& out,
                                          const FrameProgress& progress = {});
 
+/// Per recorded frame, each obstacle's outline in the slice plane (m), e.g. its markers.
+using ObstacleFrames = std::vector<std::vector<std::vector<Vec2>>>;
+
 /// The same for several jellyfish in one scene: school[j] are the frames of jellyfish j (all the
 /// same count), seeds[j] its noise individual. Every frame's meshes are merged into one (all
 /// umbrellas, then all tentacles), so the .glb and meshes hold the whole school and the camera
-/// follows the middle of the umbrellas.
+/// follows the middle of the umbrellas. `obstacles`, when not empty, holds one entry per frame: the
+/// obstacles become the mesh part "obstacles", prisms `settings.obstacle_depth_m` long.
 AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
                                          const std::vector<std::uint64_t>& seeds, const PipelineSettings& settings,
-                                         const io::OutputDir& out, const FrameProgress& progress = {});
+                                         const io::OutputDir& out, const FrameProgress& progress = {},
+                                         const ObstacleFrames& obstacles = {});
 
 /// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,
 /// structural noise, Perlin noise, compression noise, all noises; columns expanded, contracted.

@@ -316,7 +316,7 @@ struct OffscreenRenderer::Impl {
   void set_mesh_uniforms(const Camera& camera, const RenderStyle& style);
   /// Uploads the vertices and the draw order; returns the index ranges (offset, count) of the
   /// tentacles, the umbrella's back faces and its front faces, in index_data.
-  std::array<std::pair<std::size_t, std::size_t>, 3> upload(const geometry::Mesh& mesh, Vec3 eye);
+  std::array<std::pair<std::size_t, std::size_t>, 4> upload(const geometry::Mesh& mesh, Vec3 eye);
   void draw_range(std::pair<std::size_t, std::size_t> range, const std::array<double, 4>& rgba);
 };
 
@@ -523,7 +523,7 @@ void OffscreenRenderer::Impl::draw_background() {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-std::array<std::pair<std::size_t, std::size_t>, 3> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
+std::array<std::pair<std::size_t, std::size_t>, 4> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
                                                                                      Vec3 eye) {
   // Interleaved float position and normal; the vertex shader subtracts the camera target
   // (`origin`) before projecting.
@@ -539,24 +539,29 @@ std::array<std::pair<std::size_t, std::size_t>, 3> OffscreenRenderer::Impl::uplo
     out[6 * v + 4] = static_cast<float>(n.y);
     out[6 * v + 5] = static_cast<float>(n.z);
   }
-  // Draw order: tentacles, then the translucent umbrella's back faces, then its front faces, each
-  // in mesh order — what culling front faces and then back faces in two passes draws, in one pass.
-  // Facing as OpenGL decides it for a counter-clockwise-outside mesh: front when the eye is on the
-  // side the face normal points to.
+  // Draw order: the opaque obstacles, the tentacles, then the translucent umbrella's back faces,
+  // then its front faces, each in mesh order — what culling front faces and then back faces in two
+  // passes draws, in one pass. Facing as OpenGL decides it for a counter-clockwise-outside mesh:
+  // front when the eye is on the side the face normal points to.
   std::size_t total = 0;
   for (const geometry::MeshPart& part : mesh.parts) total += part.index_count;
   index_data.resize(total);
   std::size_t fill = 0;
-  std::array<std::pair<std::size_t, std::size_t>, 3> ranges{};
-  for (const geometry::MeshPart& part : mesh.parts) {
-    if (part.name != "tentacles") continue;
-    std::copy_n(mesh.indices.begin() + part.first_index, part.index_count, index_data.begin() + static_cast<long>(fill));
-    fill += part.index_count;
-  }
-  ranges[0] = {0, fill};
+  std::array<std::pair<std::size_t, std::size_t>, 4> ranges{};  // tentacles, back, front, obstacles
+  const auto copy_part = [&](const char* name) {
+    const std::size_t start = fill;
+    for (const geometry::MeshPart& part : mesh.parts) {
+      if (part.name != name) continue;
+      std::copy_n(mesh.indices.begin() + part.first_index, part.index_count, index_data.begin() + static_cast<long>(fill));
+      fill += part.index_count;
+    }
+    return std::pair<std::size_t, std::size_t>{start, fill - start};
+  };
+  ranges[3] = copy_part("obstacles");
+  ranges[0] = copy_part("tentacles");
   std::size_t front = index_data.size();  // front faces are collected from the end, then reversed
   for (const geometry::MeshPart& part : mesh.parts) {
-    if (part.name == "tentacles") continue;
+    if (part.name == "tentacles" || part.name == "obstacles") continue;
     const std::uint32_t* idx = mesh.indices.data() + part.first_index;
     for (std::uint32_t t = 0; t + 2 < part.index_count; t += 3) {
       const Vec3 a = mesh.positions[idx[t]], b = mesh.positions[idx[t + 1]], c = mesh.positions[idx[t + 2]];
@@ -570,7 +575,7 @@ std::array<std::pair<std::size_t, std::size_t>, 3> OffscreenRenderer::Impl::uplo
       }  // edge-on: culled in both passes, not drawn
     }
   }
-  ranges[1] = {ranges[0].second, fill - ranges[0].second};
+  ranges[1] = {ranges[0].first + ranges[0].second, fill - ranges[0].first - ranges[0].second};
   // Front faces lie reversed (by triangle) at the end; restore mesh order right after the back faces.
   const std::size_t front_count = index_data.size() - front, front_triangles = front_count / 3;
   for (std::size_t k = 0; k < front_triangles / 2; ++k) {
@@ -643,9 +648,11 @@ void OffscreenRenderer::draw(const geometry::Mesh& mesh, const Camera& camera, c
   m.set_mesh_uniforms(camera, style);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
-  // Tentacles first, writing depth; then the translucent umbrella without depth writes: its back
-  // faces, then its front faces (a closed shell blends correctly in that order from most views).
+  // Obstacles and tentacles first, writing depth; then the translucent umbrella without depth
+  // writes: its back faces, then its front faces (a closed shell blends correctly in that order
+  // from most views).
   glDepthMask(GL_TRUE);
+  m.draw_range(ranges[3], style.obstacles);
   m.draw_range(ranges[0], style.tentacles);
   glDepthMask(GL_FALSE);
   m.draw_range(ranges[1], style.umbrella);

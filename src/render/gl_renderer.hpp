@@ -34,6 +34,7 @@ struct RenderStyle {
   bool light_shafts = true;                              ///< soft rays from above in the background
   std::array<double, 4> umbrella{0.78, 0.90, 1.00, 0.35};   ///< RGBA; alpha < 1: translucent
   std::array<double, 4> tentacles{1.00, 0.72, 0.80, 0.75};
+  std::array<double, 4> obstacles{0.15, 0.14, 0.13, 1.00};  ///< opaque dark rock (lights and rim brighten it)
   double ambient = 0.30;
   double specular = 0.45;
   double shininess = 40.0;

@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "../cli_runner.hpp"
+#include "io/mesh_files.hpp"
 
 namespace cli = jellysim::testing;
 
@@ -87,8 +89,8 @@ TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
   fs::remove_all(dir);
 }
 
-// A scene with two jellyfish (and an obstacle, which is not drawn in 3D) renders both: the
-// animation's mesh holds twice the vertices of one jellyfish, and there are metrics for each.
+// A scene with two jellyfish renders both: the animation's mesh holds twice the vertices of one
+// jellyfish, and there are metrics for each.
 TEST(JellyfishCli, RunRendersEveryJellyfishOfTheScene) {
   const fs::path dir = fresh("run_two"), one = fresh("run_one");
   const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
@@ -105,6 +107,37 @@ TEST(JellyfishCli, RunRendersEveryJellyfishOfTheScene) {
   EXPECT_TRUE(fs::exists(dir / "jellyfish.glb"));
   fs::remove_all(dir);
   fs::remove_all(one);
+}
+
+// The scene's obstacles are in the 3D animation: prisms of six vertices per outline marker (two
+// per wall quad end, one per cap) in their own mesh part, with their own glTF material.
+TEST(JellyfishCli, RunDrawsTheSceneObstaclesAsPrisms) {
+  const fs::path dir = fresh("run_obstacles"), plain = fresh("run_plain");
+  fs::create_directories(dir.parent_path());
+  const fs::path scene = dir.parent_path() / "jelly_obstacles_scene.toml";
+  std::ofstream(scene) << "scene = \"jellyfish\"\n[jellyfish]\nposition = [0.4, 0.25]\n"
+                          "[[objects]]\ntype = \"box\"\ncentre = [0.6, 0.45]\nsize = [0.08, 0.03]\nangle_deg = 30.0\n"
+                          "[[objects]]\ntype = \"circle\"\ncentre = [0.4, 0.5]\nradius = 0.03\n";
+  const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
+                            "--set render.viewer=false --set render.obj=true --set render.ply=false --out ";
+  const Result r = run_cli("run " + scene.string() + quick + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Result r0 = run_cli("run --set jellyfish.position=[0.4,0.25]" + quick + plain.string());
+  ASSERT_EQ(r0.exit_code, 0) << r0.output;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  const auto s0 = nlohmann::json::parse(slurp(plain / "summary.json"));
+  const int extra = s["animation"]["vertices_per_frame"].get<int>() - s0["animation"]["vertices_per_frame"].get<int>();
+  EXPECT_GT(extra, 6 * 2 * 8);  // at least eight markers per obstacle
+  EXPECT_EQ(extra % 6, 0);
+  EXPECT_NE(slurp(dir / "meshes/frame_0000.obj").find("g obstacles"), std::string::npos);
+  const auto glb = jellysim::io::parse_glb(slurp(dir / "jellyfish.glb"));
+  ASSERT_EQ(glb.json["meshes"][0]["primitives"].size(), 3u);
+  bool named = false;
+  for (const auto& m : glb.json["materials"]) named |= m["name"] == "obstacles";
+  EXPECT_TRUE(named);
+  fs::remove_all(dir);
+  fs::remove_all(plain);
+  fs::remove(scene);
 }
 
 TEST(JellyfishCli, OvalMembraneLosesLessAreaThanTheThesis) {

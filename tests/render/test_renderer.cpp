@@ -2,11 +2,13 @@
 // and the whole animation-output pipeline. Skipped (with the reason) where no EGL device exists.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
 #include "experiments/experiment.hpp"
 #include "geometry/extrapolation.hpp"
+#include "geometry/obstacle_mesh.hpp"
 #include "geometry/synthetic_bell.hpp"
 #include "io/errors.hpp"
 #include "render/animation_outputs.hpp"
@@ -73,6 +75,24 @@ geometry::FrameGeometry noisy_bell() {
   return geometry::GeometryBuilder(geometry::GeometrySettings{}, 0.028).build(geometry::synthetic_bell(0.04, 0.028, 0.6, 21, 8));
 }
 Camera reference_camera() { return camera_looking_at({0.0, 0.008, 0.0}, {0.4, 0.25, 1.0}, 0.11, 40.0); }
+
+// Obstacles are opaque and drawn before the translucent umbrella, writing depth: a prism in front of
+// the bell hides it completely, so the picture there is the prism's alone.
+TEST(Renderer, ObstaclePrismInFrontHidesTheBell) {
+  REQUIRE_OFFSCREEN_GL();
+  const geometry::FrameGeometry bell = noisy_bell();
+  const std::vector<Vec2> box{{-0.01, -0.002}, {0.01, -0.002}, {0.01, 0.018}, {-0.01, 0.018}};
+  const geometry::ObstaclePrisms prisms({box}, 0.06);  // its near cap at z = 3 cm, the bell's rim at 2 cm
+  geometry::Mesh with_bell = bell.mesh, alone;
+  prisms.append({box}, with_bell);
+  prisms.append({box}, alone);
+  OffscreenRenderer renderer(160, 120);
+  const RgbImage a = renderer.render(with_bell, reference_camera(), RenderStyle{});
+  const RgbImage b = renderer.render(alone, reference_camera(), RenderStyle{});
+  const RgbImage c = renderer.render(bell.mesh, reference_camera(), RenderStyle{});
+  EXPECT_EQ(a.at(80, 60), b.at(80, 60));
+  EXPECT_GT(std::abs(brightness(a.at(80, 60)) - brightness(c.at(80, 60))), 10.0);
+}
 
 TEST(Renderer, FramesRepeatWithReusedImagesAndTheCachedBackground) {
   REQUIRE_OFFSCREEN_GL();
