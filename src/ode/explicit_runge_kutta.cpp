@@ -15,16 +15,14 @@ StepOutcome ExplicitRungeKutta::step(const OdeSystem& system, double t, double d
   first_stage(system, t, y);
   const std::size_t stages = tableau_.stages();
   const std::size_t computed_here = tableau_.fsal ? stages - 1 : stages;
-  for (std::size_t i = 1; i < computed_here; ++i) {
-    stage_y_ = y;
-    add_stages(dt, tableau_.a[i], stage_y_);
-    system.derivative(t + tableau_.c[i] * dt, stage_y_, k_[i]);
-  }
-  y_out = y;
-  add_stages(dt, tableau_.b, y_out);
+  for (std::size_t i = 1; i < computed_here; ++i)
+    system.stage_derivative(t + tableau_.c[i] * dt, y, dt, tableau_.a[i], k_, stage_y_, k_[i]);
   if (tableau_.fsal) {  // last row of A equals b, so the last stage is evaluated at y_out itself
-    system.derivative(t + dt, y_out, k_[stages - 1]);
+    system.stage_derivative(t + dt, y, dt, tableau_.b, k_, y_out, k_[stages - 1]);
     end_.store(system, t + dt, y_out, k_[stages - 1]);
+  } else {
+    y_out = y;
+    add_stages(dt, tableau_.b, y_out);
   }
   if (error == nullptr || !has_embedded_pair()) return {};
   error->setZero(y.size());

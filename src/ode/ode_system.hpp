@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <span>
 
 namespace jellysim::ode {
 
@@ -21,6 +22,16 @@ class OdeSystem {
   void derivative(double t, const Vector& y, Vector& dydt) const {
     ++evaluations_;
     compute_derivative(t, y, dydt);
+  }
+
+  /// A Runge–Kutta stage (eq. 2.38): y_stage = y + h Σ_j weights[j] k[j] (terms with a zero weight
+  /// skipped, the others added in j order), and dydt = f(t, y_stage). Counts one function
+  /// evaluation. A system may form y_stage inside its own evaluation (in parallel parts, say); the
+  /// result is bit for bit the default's.
+  void stage_derivative(double t, const Vector& y, double h, std::span<const double> weights,
+                        std::span<const Vector> k, Vector& y_stage, Vector& dydt) const {
+    ++evaluations_;
+    compute_stage_derivative(t, y, h, weights, k, y_stage, dydt);
   }
 
   /// True when jacobian() is implemented (needed by backward Euler).
@@ -42,6 +53,15 @@ class OdeSystem {
 
  protected:
   virtual void compute_derivative(double t, const Vector& y, Vector& dydt) const = 0;
+  /// Forms y_stage with vector operations, then calls compute_derivative.
+  virtual void compute_stage_derivative(double t, const Vector& y, double h, std::span<const double> weights,
+                                        std::span<const Vector> k, Vector& y_stage, Vector& dydt) const {
+    y_stage = y;
+    for (std::size_t j = 0; j < weights.size(); ++j) {
+      if (weights[j] != 0.0) y_stage += (h * weights[j]) * k[j];
+    }
+    compute_derivative(t, y_stage, dydt);
+  }
   virtual void compute_jacobian(double /*t*/, const Vector& /*y*/, SparseMatrix& /*jac*/) const {}
 
  private:

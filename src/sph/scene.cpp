@@ -85,6 +85,40 @@ void CoupledSystem::unpack_state(const ode::Vector& y) const {
 // threads the whole evaluation is one parallel region: each thread unpacks and packs its own
 // range of fluid particles, and the last one also does the solid particles and the body.
 void CoupledSystem::compute_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const {
+  evaluate(t, y, nullptr, dydt);
+}
+
+/// The Runge–Kutta stage state y + h Σ_j w_j k_j (eq. 2.38) on the Vec2 entries [first, last):
+/// OdeSystem's vector sums restricted to that segment (the same operations in the same order).
+struct CoupledSystem::StageSum {
+  const ode::Vector* y;
+  double h;
+  std::span<const double> w;
+  std::span<const ode::Vector> k;
+  ode::Vector* out;
+  void form(std::size_t first, std::size_t last) const {
+    const auto start = static_cast<Eigen::Index>(2 * first), length = static_cast<Eigen::Index>(2 * (last - first));
+    auto segment = out->segment(start, length);
+    segment = y->segment(start, length);
+    for (std::size_t j = 0; j < w.size(); ++j) {
+      if (w[j] != 0.0) segment += (h * w[j]) * k[j].segment(start, length);
+    }
+  }
+};
+
+void CoupledSystem::compute_stage_derivative(double t, const ode::Vector& y, double h, std::span<const double> weights,
+                                             std::span<const ode::Vector> k, ode::Vector& y_stage,
+                                             ode::Vector& dydt) const {
+  if (scene_.fluid_count == 0 || y.size() != dimension()) {
+    OdeSystem::compute_stage_derivative(t, y, h, weights, k, y_stage, dydt);
+    return;
+  }
+  y_stage.resize(y.size());
+  const StageSum sum{&y, h, weights, k, &y_stage};
+  evaluate(t, y_stage, &sum, dydt);
+}
+
+void CoupledSystem::evaluate(double t, const ode::Vector& y, const StageSum* sum, ode::Vector& dydt) const {
   const std::size_t n = scene_.position.size(), nf = scene_.fluid_count;
   if (y.size() != dimension()) throw std::invalid_argument("CoupledSystem: state size does not match the scene");
   dydt.resize(y.size());
@@ -101,12 +135,17 @@ void CoupledSystem::compute_derivative(double t, const ode::Vector& y, ode::Vect
     const CoupledSystem* self;
     const ode::Vector* y;
     ode::Vector* dydt;
-    std::size_t half;
+    std::size_t half, fluid;
     double t;
-  } const c{this, &y, &dydt, n + scene_.body.points.size(), t};
+    const StageSum* sum;
+  } const c{this, &y, &dydt, n + scene_.body.points.size(), nf, t, sum};
   EvaluationHooks hooks;
   hooks.load = [p = &c](std::size_t b, std::size_t e) {
     const CoupledSystem& s = *p->self;
+    if (p->sum != nullptr) {  // this part's positions and velocities of the stage state
+      p->sum->form(b, e);
+      p->sum->form(p->half + b, p->half + e);
+    }
     for (std::size_t i = b; i < e; ++i) {
       s.xf_[i] = get(*p->y, i);
       s.vf_[i] = get(*p->y, p->half + i);
@@ -120,7 +159,13 @@ void CoupledSystem::compute_derivative(double t, const ode::Vector& y, ode::Vect
       set(*p->dydt, p->half + i, s.af_[i] + s.scene_.particle_gravity);
     }
   };
-  hooks.side = [p = &c] { p->self->rest_derivative(p->t, *p->y, *p->dydt); };
+  hooks.side = [p = &c] {
+    if (p->sum != nullptr) {  // the solid particles and the body
+      p->sum->form(p->fluid, p->half);
+      p->sum->form(p->half + p->fluid, 2 * p->half);
+    }
+    p->self->rest_derivative(p->t, *p->y, *p->dydt);
+  };
   fluid_->compute_accelerations(xf_, vf_, mf_, af_, hooks);
 }
 

@@ -178,6 +178,36 @@ TEST(SphScene, OneTwoAndThreeThreadsGiveBitIdenticalStates) {
   }
 }
 
+// The coupled system forms a Runge–Kutta stage state inside its parallel evaluation (each thread its
+// own particles, the last one the body): state and derivative are bit for bit those of forming
+// y + h Σ w_j k_j with vector operations and evaluating there, for one, two and three threads.
+TEST(SphScene, FusedStageStateAndDerivativeMatchTheVectorSumsBitForBit) {
+  for (int threads : {1, 2, 3}) {
+    Scene s = small_larva_scene(threads);
+    s.velocity.assign(s.position.size(), Vec2{0.03, -0.01});
+    const CoupledSystem system(s);
+    const ode::Vector y = system.pack_state();
+    std::vector<ode::Vector> k(3);
+    system.derivative(0.0, y, k[0]);
+    k[1] = 0.5 * k[0] + ode::Vector::Constant(y.size(), 0.25);
+    k[2] = ode::Vector::Zero(y.size());  // a stage not computed yet: its zero weight must skip it
+    const std::vector<double> w{0.3, -0.7, 0.0};
+    const double h = 1.3e-3;
+    ode::Vector expected_y = y, expected_f, fused_y, fused_f;
+    for (std::size_t j = 0; j < w.size(); ++j)
+      if (w[j] != 0.0) expected_y += (h * w[j]) * k[j];
+    system.derivative(0.01, expected_y, expected_f);
+    const auto before = system.evaluations();
+    system.stage_derivative(0.01, y, h, w, k, fused_y, fused_f);
+    EXPECT_EQ(system.evaluations(), before + 1);
+    ASSERT_EQ(fused_y.size(), y.size());
+    for (Eigen::Index e = 0; e < y.size(); ++e) {
+      ASSERT_EQ(fused_y[e], expected_y[e]) << threads << " threads, entry " << e;
+      ASSERT_EQ(fused_f[e], expected_f[e]) << threads << " threads, entry " << e;
+    }
+  }
+}
+
 TEST(SphScene, SameInputsGiveIdenticalResultsWithOneOrTwoThreads) {
   std::vector<Vec2> finals[3];
   for (int k = 0; k < 3; ++k) {
