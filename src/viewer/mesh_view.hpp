@@ -23,8 +23,10 @@ class MeshView {
   MeshView(const MeshView&) = delete;
   MeshView& operator=(const MeshView&) = delete;
 
-  /// Renders the meshes into a width × height texture (returned) framed to fit all of them.
-  GLuint draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width, int height);
+  /// Renders the meshes into a width × height texture (returned) framed to fit all of them, with
+  /// `obstacles` (part "obstacles", opaque; not framed) drawn first when given.
+  GLuint draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width, int height,
+              const geometry::Mesh* obstacles = nullptr);
 
  private:
   void upload(const geometry::Mesh& mesh);

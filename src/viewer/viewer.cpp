@@ -9,6 +9,7 @@
 #include <fstream>
 #include <thread>
 
+#include "geometry/obstacle_mesh.hpp"
 #include "io/errors.hpp"
 #include "viewer/field_image.hpp"
 #include "viewer/input_script.hpp"
@@ -74,6 +75,7 @@ class Viewer {
  private:
   void check_script_parameters() const;
   void rebuild_mesh_builders();
+  void rebuild_obstacle_mesh();
   void frame(double gap_s);
   MouseState scripted_mouse();
   void apply_event(const InputEvent& e);
@@ -120,6 +122,9 @@ class Viewer {
   std::vector<geometry::GeometryBuilder> builders_;
   std::vector<geometry::FrameGeometry> meshes_;
   bool meshes_dirty_ = true;
+  std::unique_ptr<geometry::ObstaclePrisms> prisms_;  ///< for the current obstacles' outline sizes
+  std::vector<std::size_t> prism_points_;
+  geometry::Mesh obstacle_mesh_;
   OrbitCamera camera_;
   ScenePanel scene_;
   std::unique_ptr<Window> window_;
@@ -135,6 +140,33 @@ void Viewer::check_script_parameters() const {
     if (e.kind != EventKind::set) continue;
     const std::string why = check_param(e.name, e.index, e.value, sim_->jellyfish_count());
     if (!why.empty()) throw InputError(options_.script_source + ": '" + e.text + "': " + why);
+  }
+}
+
+// The obstacles as prisms (geometry/obstacle_mesh.hpp); the caps are triangulated again only when
+// the obstacles or their marker counts change. An outline that cannot be drawn leaves them out.
+void Viewer::rebuild_obstacle_mesh() {
+  std::vector<std::vector<Vec2>> outlines;
+  std::vector<std::size_t> points;
+  for (std::size_t o = 0; o < sim_->obstacle_count(); ++o) {
+    outlines.push_back(sim_->obstacle_outline(o));
+    points.push_back(outlines.back().size());
+  }
+  obstacle_mesh_ = {};
+  if (outlines.empty()) return;
+  if (!prisms_ || points != prism_points_) {
+    prism_points_ = points;
+    try {
+      prisms_ = std::make_unique<geometry::ObstaclePrisms>(outlines, options_.obstacle_depth_m);
+    } catch (const std::invalid_argument&) {
+      prisms_.reset();
+    }
+  }
+  if (!prisms_) return;
+  try {
+    prisms_->append(outlines, obstacle_mesh_);
+  } catch (const std::invalid_argument&) {
+    obstacle_mesh_ = {};
   }
 }
 
@@ -377,6 +409,7 @@ void Viewer::draw_views() {
     for (std::size_t i = 0; i < sim_->jellyfish_count(); ++i) {
       meshes_.push_back(builders_[i].build(sim_->jellyfish(i).slice_frame(sim_->time_s())));
     }
+    rebuild_obstacle_mesh();
     meshes_dirty_ = false;
   }
   const double t2 = wall_now();
@@ -389,7 +422,7 @@ void Viewer::draw_views() {
   const float fb_scale = io.DisplayFramebufferScale.x;
   const double scale = fb_scale * options_.render_scale;
   const GLuint texture = mesh_view_->draw(meshes, camera_, static_cast<int>(panel_w * scale),
-                                          static_cast<int>(panel_h * scale));
+                                          static_cast<int>(panel_h * scale), &obstacle_mesh_);
   ImGui::GetBackgroundDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture)),
                                            ImVec2(static_cast<float>(panel_w), 0),
                                            ImVec2(static_cast<float>(area_w), static_cast<float>(panel_h)),

@@ -32,6 +32,7 @@ struct ViewerOptions {
   bool record_mp4 = true;
   std::filesystem::path stats;       ///< JSON with fps, sim_rate, frames, steps and the state
   geometry::GeometrySettings geometry;  ///< the 3D pipeline (noise weights are live parameters)
+  double obstacle_depth_m = 0.12;  ///< obstacles in the 3D panel: prisms this long (as render.obstacle_depth)
   std::string scene_name;          ///< shown in the title bar
   bool vsync = false;
   bool profile = false;            ///< glFinish after each stage so the stats' ms_per_frame attribute GPU time
