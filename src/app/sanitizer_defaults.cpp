@@ -8,7 +8,7 @@
 // to return such an address, which depends only on how many allocations came before. LeakSanitizer
 // then scans a bogus range and its stop-the-world tracer dies ("Tracer caught signal 11",
 // google/sanitizers#1353; fixed upstream in LLVM 17 by asking the allocator instead). Mesa's
-// OpenGL driver has such blocks, and the CI machine's run of `jellysim run` hit one every time.
+// OpenGL driver has such blocks, and `jellysim run` hit one in both CI runs of 2026-11-21/22.
 // Without the interceptor the leak check still follows glibc's blocks, which are ordinary heap
 // chunks reachable from the thread's dynamic thread vector (the whole suite passes unchanged).
 #if defined(__SANITIZE_ADDRESS__)  // GCC

@@ -315,7 +315,7 @@ struct OffscreenRenderer::Impl {
   static MeshProgram make_mesh_program(const std::string& vertex, const std::string& fragment);
   void set_mesh_uniforms(const Camera& camera, const RenderStyle& style);
   /// Uploads the vertices and the draw order; returns the index ranges (offset, count) of the
-  /// tentacles, the umbrella's back faces and its front faces, in index_data.
+  /// tentacles, the umbrella's back faces, its front faces and the obstacles, in index_data.
   std::array<std::pair<std::size_t, std::size_t>, 4> upload(const geometry::Mesh& mesh, Vec3 eye);
   void draw_range(std::pair<std::size_t, std::size_t> range, const std::array<double, 4>& rgba);
 };
