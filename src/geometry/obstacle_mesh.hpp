@@ -30,8 +30,6 @@ class ObstaclePrisms {
   /// at corners (a box), and the two caps. Throws std::invalid_argument when a count differs.
   void append(const std::vector<std::vector<Vec2>>& outlines, Mesh& mesh) const;
 
-  std::size_t obstacle_count() const { return prisms_.size(); }
-
  private:
   struct Prism {
     std::size_t points = 0;
