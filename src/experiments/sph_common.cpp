@@ -208,6 +208,7 @@ nlohmann::ordered_json run_figures(const sph::RunResult& r, double wall_seconds,
   if (std::isfinite(r.boundary_width_m)) j["boundary_width"] = r.boundary_width_m;
   j["threads"] = r.threads;
   j["parallel_evaluations"] = r.parallel_evaluations;  // of function_evaluations (SPH ones), see docs/sph.md
+  j["neighbour_list_rebuilds"] = r.list_rebuilds;  // SPH evaluations that searched the grid, see docs/sph.md
   return j;
 }
 

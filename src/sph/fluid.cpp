@@ -33,6 +33,7 @@ SphFluid::SphFluid(SphParameters parameters, std::vector<Wall> walls, int thread
       kernels_((validate(parameters), parameters.smoothing_radius_m)),
       walls_(std::move(walls)),
       pool_(std::make_unique<WorkerPool>(threads)),
+      reach_((1.0 + kListSkin) * parameters.smoothing_radius_m),
       parts_(static_cast<std::size_t>(threads)) {
   // A particle near k mirroring walls gets at most k twins plus one per pair (corners).
   for (const Wall& w : walls_) {
@@ -42,9 +43,16 @@ SphFluid::SphFluid(SphParameters parameters, std::vector<Wall> walls, int thread
   max_mirrors_per_particle_ = k + k * (k - 1) / 2;
 }
 
-// Sizes every buffer for n real particles and the most mirrors they can have, so the parallel
+std::size_t SphFluid::mirrored_count() const {
+  std::size_t count = 0;
+  for (const Part& part : parts_) count += part.active_twins;
+  return count;
+}
+
+// Sizes every buffer for n real particles and the most twins they can have, so the parallel
 // phases never allocate shared memory.
 void SphFluid::prepare(std::size_t n) {
+  if (n != listed_count_ || !lists_valid_) force_rebuild_ = true;
   real_count_ = n;
   const std::size_t capacity = n * (1 + max_mirrors_per_particle_);
   if (all_x_.size() < capacity) {
@@ -52,157 +60,232 @@ void SphFluid::prepare(std::size_t n) {
     all_v_.resize(capacity);
     all_m_.resize(capacity);
     origin_.resize(capacity);
+    active_.resize(capacity);
   }
+  reference_x_.resize(n);
   rho_.resize(n);
   p_.resize(n);
   first_.resize(n);
   count_.resize(n);
+  candidates_first_.resize(n);
+  candidates_count_.resize(n);
   grid_.reserve(capacity, 2 * parts_.size());
   slots_.reserve(2 * parts_.size());
 }
 
+bool SphFluid::rebuilding() const {
+  return force_rebuild_ || std::any_of(parts_.begin(), parts_.end(), [](const Part& p) { return p.moved; });
+}
+
 // One evaluation as phases separated by barriers (WorkerPool::run_phases):
-//   1. load the part's particles, copy them into all_*, create their mirrors (§5.1.3);
-//   2. gather the mirrors after the real particles, histogram the grid cells of the part's points;
-//   3. place every point in the grid (counting sort) on the first thread, while the last one runs
-//      the independent side work (the body's forces); a placement shared by the threads cost each
-//      twice the whole serial one (every thread needs the full (cell, slot) prefix, and both write
-//      into the same cache lines of the sorted index);
-//   4. densities and pressures of the part's particles (eq. 5.5, p = κ_p (ρ − ρ0));
-//   5. accelerations of the part's particles (eqs. 5.6, 5.8).
+//   1. load the part's particles into all_*, test how far they moved since the last rebuild, move
+//      their twins (§5.1.3); the last part also runs the side work (the body's forces);
+//   only when the lists are rebuilt (rebuilding() after phase 1):
+//   2. the twin table of the part's particles (those within h + skin/2 of a mirroring wall);
+//   3. gather the twins after the real particles, histogram the grid cells of the part's points;
+//   4. place every point in the grid (counting sort) on the first thread (a placement shared by the
+//      threads cost each twice the whole serial one: every thread needs the full (cell, slot)
+//      prefix, and both write into the same cache lines of the sorted index);
+//   always:
+//   5. densities and pressures of the part's particles (eq. 5.5, p = κ_p (ρ − ρ0)), from the grid
+//      when rebuilding (which also fills the part's Verlet lists), from the lists otherwise;
+//   6. accelerations of the part's particles (eqs. 5.6, 5.8).
 void SphFluid::evaluate(const Inputs& in, bool accelerations) {
   prepare(in.x->size());
   using Phase = WorkerPool::Phase;
-  const std::array<Phase, 5> phases{
-      Phase([&](int part) { load_and_mirror(in, part); }), Phase([&](int part) { gather_and_count(part); }),
-      Phase([&](int part) { place_and_side(in, part); }), Phase([&](int part) { density_range(part); }),
-      Phase([&](int part) { acceleration_range(in, part); })};
+  using Gate = WorkerPool::Gate;
+  const std::array<Phase, 6> phases{
+      Phase([&](int part) { load_and_check(in, part); }), Phase([&](int part) { find_twins(part); }),
+      Phase([&](int part) { gather_and_count(part); }),   Phase([&](int part) { place(part); }),
+      Phase([&](int part) { density_range(part); }),      Phase([&](int part) { acceleration_range(in, part); })};
+  const Gate when_rebuilding([this] { return rebuilding(); });
+  const std::array<Gate, 6> gates{Gate(), when_rebuilding, when_rebuilding, when_rebuilding, Gate(), Gate()};
   const std::size_t count = accelerations ? phases.size() : phases.size() - 1;
   const std::span<const Phase> run(phases.data(), count);
+  const std::span<const Gate> gated(gates.data(), count);
   ++evaluations_;
-  if (pool_->threads() == 1 || real_count_ < 64) {  // one thread, or too little work to share
-    pool_->run_phases(run, false);
-    return;
-  }
-  const bool parallel = chooser_.parallel();
-  parallel_evaluations_ += parallel ? 1 : 0;
+  lists_valid_ = false;  // until the evaluation completes
+  const bool serial = pool_->threads() == 1 || real_count_ < 64;  // one thread, or too little work to share
+  const bool parallel = !serial && chooser_.parallel();
   const auto start = std::chrono::steady_clock::now();
-  pool_->run_phases(run, parallel);
-  chooser_.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-}
-
-// §5.1.3: every particle within h of a mirroring wall gets a twin reflected across it (position and
-// velocity); near a corner of two walls also the twin reflected across both.
-void SphFluid::add_mirrors(Part& part, std::size_t i, Vec2 x, Vec2 v, double m) const {
-  const double h = kernels_.h();
-  const auto push = [&](Vec2 mx, Vec2 mv) {
-    part.mirror_x.push_back(mx);
-    part.mirror_v.push_back(mv);
-    part.mirror_m.push_back(m);
-    part.mirror_source.push_back(static_cast<std::uint32_t>(i));
-    part.bounds.add(mx);
-  };
-  for (std::size_t a = 0; a < walls_.size(); ++a) {
-    const Wall& wa = walls_[a];
-    if (!wa.mirror || wa.distance(x) >= h) continue;
-    const Vec2 xa = wa.mirror_position(x), va = wa.mirror_velocity(v);
-    push(xa, va);
-    for (std::size_t b = a + 1; b < walls_.size(); ++b) {
-      const Wall& wb = walls_[b];
-      if (wb.mirror && wb.distance(x) < h && std::abs(dot(wa.normal, wb.normal)) < 0.999) {
-        push(wb.mirror_position(xa), wb.mirror_velocity(va));
-      }
-    }
+  pool_->run_phases(run, gated, parallel);
+  const bool rebuilt = rebuilding();
+  if (rebuilt) {
+    ++list_rebuilds_;
+    listed_count_ = real_count_;
   }
+  force_rebuild_ = false;
+  for (Part& part : parts_) part.moved = false;
+  lists_valid_ = true;
+  if (serial) return;
+  parallel_evaluations_ += parallel ? 1 : 0;
+  // A rebuild costs several evaluations: it would decide the comparison for whichever path it fell on.
+  if (!rebuilt) chooser_.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-void SphFluid::load_and_mirror(const Inputs& in, int part_index) {
+Vec2 SphFluid::twin_position(const Twin& t, Vec2 x) const {
+  const Vec2 once = walls_[static_cast<std::size_t>(t.a)].mirror_position(x);
+  return t.b < 0 ? once : walls_[static_cast<std::size_t>(t.b)].mirror_position(once);
+}
+
+Vec2 SphFluid::twin_velocity(const Twin& t, Vec2 v) const {
+  const Vec2 once = walls_[static_cast<std::size_t>(t.a)].mirror_velocity(v);
+  return t.b < 0 ? once : walls_[static_cast<std::size_t>(t.b)].mirror_velocity(once);
+}
+
+// §5.1.3: a particle within h of a mirroring wall sees its twin across it; within h of two walls
+// also the twin across both.
+bool SphFluid::twin_active(const Twin& t, Vec2 x) const {
+  const double h = kernels_.h();
+  return walls_[static_cast<std::size_t>(t.a)].distance(x) < h &&
+         (t.b < 0 || walls_[static_cast<std::size_t>(t.b)].distance(x) < h);
+}
+
+void SphFluid::write_twins(Part& part) {
+  std::size_t active = 0;
+  for (std::size_t k = 0; k < part.twins.size(); ++k) {
+    const Twin& t = part.twins[k];
+    const std::size_t at = part.twin_offset + k, i = t.source;
+    all_x_[at] = twin_position(t, all_x_[i]);
+    all_v_[at] = twin_velocity(t, all_v_[i]);
+    all_m_[at] = all_m_[i];
+    origin_[at] = t.source;
+    const bool on = twin_active(t, all_x_[i]);
+    active_[at] = on ? 1 : 0;
+    active += on ? 1 : 0;
+  }
+  part.active_twins = active;
+}
+
+void SphFluid::load_and_check(const Inputs& in, int part_index) {
   const auto [begin, end] = real_range(part_index);
   if (in.hooks != nullptr && in.hooks->load) in.hooks->load(begin, end);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
-  part.mirror_x.clear();
-  part.mirror_v.clear();
-  part.mirror_m.clear();
-  part.mirror_source.clear();
-  part.bounds = {};
   const std::vector<Vec2>& x = *in.x;
   const std::vector<Vec2>& v = *in.v;
   const std::vector<double>& m = *in.m;
-  const double h = kernels_.h();
+  const double half_skin = 0.5 * (reach_ - kernels_.h()), limit2 = half_skin * half_skin;
+  bool moved = false;
   for (std::size_t i = begin; i < end; ++i) {
     all_x_[i] = x[i];
     all_v_[i] = v[i];
     all_m_[i] = m[i];
-    origin_[i] = static_cast<std::uint32_t>(i);
-    part.bounds.add(x[i]);
-    bool near_wall = false;  // most particles are not: skip the twin construction for them
-    for (const Wall* w : mirror_walls_) near_wall |= w->distance(x[i]) < h;
-    if (near_wall) add_mirrors(part, i, x[i], v[i], m[i]);
+    moved |= !(norm_squared(x[i] - reference_x_[i]) < limit2);  // NaN counts as moved
   }
+  part.moved = moved;
+  if (!force_rebuild_) write_twins(part);  // a rebuild writes them again from new tables
+  if (part_index + 1 == static_cast<int>(parts_.size()) && in.hooks != nullptr && in.hooks->side) in.hooks->side();
 }
 
-// Mirrors follow the real particles in part order, i.e. in the order of their sources, exactly as a
-// single thread would create them. Grid slots: part p owns slot p (its real particles) and slot
-// P + p (its mirrors); slots are consecutive index ranges in that order.
+// Rebuild, phase 2: the twins of the part's particles within h + skin/2 of mirroring walls (a
+// source moves less than skin/2 before the next rebuild, so no twin can be missing), the reference
+// positions and the part's bounds (twins included, at their current positions).
+void SphFluid::find_twins(int part_index) {
+  const auto [begin, end] = real_range(part_index);
+  Part& part = parts_[static_cast<std::size_t>(part_index)];
+  part.twins.clear();
+  part.bounds = {};
+  const double reach = kernels_.h() + 0.5 * (reach_ - kernels_.h());
+  for (std::size_t i = begin; i < end; ++i) {
+    const Vec2 xi = all_x_[i];
+    reference_x_[i] = xi;
+    active_[i] = 1;
+    origin_[i] = static_cast<std::uint32_t>(i);
+    part.bounds.add(xi);
+    bool near_wall = false;  // most particles are not: skip the twin construction for them
+    for (const Wall* w : mirror_walls_) near_wall |= w->distance(xi) < reach;
+    if (!near_wall) continue;
+    for (std::size_t a = 0; a < walls_.size(); ++a) {
+      const Wall& wa = walls_[a];
+      if (!wa.mirror || !(wa.distance(xi) < reach)) continue;
+      const auto source = static_cast<std::uint32_t>(i);
+      part.twins.push_back({source, static_cast<std::int32_t>(a), -1});
+      for (std::size_t b = a + 1; b < walls_.size(); ++b) {
+        const Wall& wb = walls_[b];
+        if (wb.mirror && wb.distance(xi) < reach && std::abs(dot(wa.normal, wb.normal)) < 0.999) {
+          part.twins.push_back({source, static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)});
+        }
+      }
+    }
+  }
+  for (const Twin& t : part.twins) part.bounds.add(twin_position(t, all_x_[t.source]));
+}
+
+// Rebuild, phase 3. Twins follow the real particles in part order, i.e. in the order of their
+// sources, exactly as a single thread would create them. Grid slots: part p owns slot p (its real
+// particles) and slot P + p (its twins); slots are consecutive index ranges in that order. The
+// cells are (1 + skin) h wide, so the 3 × 3 cells around a point hold everything within its lists'
+// radius.
 void SphFluid::gather_and_count(int part_index) {
   const std::size_t parts = parts_.size(), p = static_cast<std::size_t>(part_index);
   std::size_t offset = real_count_, total = real_count_;
   Bounds bounds;
   for (std::size_t q = 0; q < parts; ++q) {
-    if (q < p) offset += parts_[q].mirror_x.size();
-    total += parts_[q].mirror_x.size();
+    if (q < p) offset += parts_[q].twins.size();
+    total += parts_[q].twins.size();
     bounds.merge(parts_[q].bounds);
   }
   Part& part = parts_[p];
-  part.mirror_offset = offset;
-  part.layout = GridLayout::make(bounds, kernels_.h(), total);
-  if (p == 0) total_ = total;
-  for (std::size_t k = 0; k < part.mirror_x.size(); ++k) {
-    all_x_[offset + k] = part.mirror_x[k];
-    all_v_[offset + k] = part.mirror_v[k];
-    all_m_[offset + k] = part.mirror_m[k];
-    origin_[offset + k] = part.mirror_source[k];
-  }
+  part.twin_offset = offset;
+  part.layout = GridLayout::make(bounds, reach_, total);
+  write_twins(part);
   const auto [begin, end] = real_range(part_index);
   grid_.count(part.layout, all_x_.data(), begin, end, p);
-  grid_.count(part.layout, all_x_.data(), offset, offset + part.mirror_x.size(), parts + p);
+  grid_.count(part.layout, all_x_.data(), offset, offset + part.twins.size(), parts + p);
 }
 
-void SphFluid::place_and_side(const Inputs& in, int part_index) {
+void SphFluid::place(int part_index) {
+  if (part_index != 0) return;
   const std::size_t parts = parts_.size();
-  if (part_index == 0) {
-    slots_.clear();
-    for (std::size_t p = 0; p < parts; ++p) {
-      const auto [begin, end] = real_range(static_cast<int>(p));
-      slots_.push_back({p, begin, end});
-    }
-    for (std::size_t p = 0; p < parts; ++p) {
-      const Part& part = parts_[p];
-      slots_.push_back({parts + p, part.mirror_offset, part.mirror_offset + part.mirror_x.size()});
-    }
-    grid_.place(parts_[0].layout, slots_, 2 * parts);
+  slots_.clear();
+  for (std::size_t p = 0; p < parts; ++p) {
+    const auto [begin, end] = real_range(static_cast<int>(p));
+    slots_.push_back({p, begin, end});
   }
-  if (part_index + 1 == static_cast<int>(parts) && in.hooks != nullptr && in.hooks->side) in.hooks->side();
+  for (std::size_t p = 0; p < parts; ++p) {
+    const Part& part = parts_[p];
+    slots_.push_back({parts + p, part.twin_offset, part.twin_offset + part.twins.size()});
+  }
+  grid_.place(parts_[0].layout, slots_, 2 * parts);
 }
 
 void SphFluid::density_range(int part_index) {
   const auto [begin, end] = real_range(part_index);
-  const double h2 = kernels_.h2(), poly6 = kernels_.poly6_r2(0.0) / (h2 * h2 * h2);
-  NeighbourList& list = parts_[static_cast<std::size_t>(part_index)].list;
+  const double h2 = kernels_.h2(), poly6 = kernels_.poly6_r2(0.0) / (h2 * h2 * h2), reach2 = reach_ * reach_;
+  Part& part = parts_[static_cast<std::size_t>(part_index)];
+  NeighbourList& list = part.list;
   list.index.clear();
   list.distance.clear();
+  const bool rebuild = rebuilding();
+  if (rebuild) part.candidates.clear();
   for (std::size_t i = begin; i < end; ++i) {
     const Vec2 xi = all_x_[i];
     double rho = all_m_[i] * poly6 * h2 * h2 * h2;  // the particle itself
     first_[i] = static_cast<std::uint32_t>(list.index.size());
-    grid_.for_each_candidate(xi, [&](std::size_t j) {
-      const double r2 = norm_squared(all_x_[j] - xi);
-      if (r2 >= h2 || j == i) return;
+    // Pairs closer than h (NaN distances included, so a broken state spreads and is caught).
+    const auto add = [&](std::uint32_t j, double r2) {
+      if (r2 >= h2 || active_[j] == 0) return;
       const double d = h2 - r2;
       rho += all_m_[j] * poly6 * (d * d * d);  // eq. 5.5
-      list.index.push_back(static_cast<std::uint32_t>(j));
+      list.index.push_back(j);
       list.distance.push_back(std::sqrt(r2));
-    });
+    };
+    if (rebuild) {
+      candidates_first_[i] = static_cast<std::uint32_t>(part.candidates.size());
+      grid_.for_each_candidate(xi, [&](std::size_t j) {
+        const double r2 = norm_squared(all_x_[j] - xi);
+        if (r2 >= reach2 || j == i) return;
+        part.candidates.push_back(static_cast<std::uint32_t>(j));
+        add(static_cast<std::uint32_t>(j), r2);
+      });
+      candidates_count_[i] = static_cast<std::uint32_t>(part.candidates.size()) - candidates_first_[i];
+    } else {
+      const std::uint32_t* candidate = part.candidates.data() + candidates_first_[i];
+      for (std::uint32_t k = 0; k < candidates_count_[i]; ++k) {
+        const std::uint32_t j = candidate[k];
+        add(j, norm_squared(all_x_[j] - xi));
+      }
+    }
     count_[i] = static_cast<std::uint32_t>(list.index.size()) - first_[i];
     rho_[i] = rho;
     p_[i] = parameters_.gas_constant * (rho - parameters_.rest_density);  // equation of state

@@ -34,15 +34,26 @@ struct EvaluationHooks {
   std::function<void(std::size_t begin, std::size_t end)> load;
   /// Called once the accelerations on [begin, end) are final.
   std::function<void(std::size_t begin, std::size_t end)> store;
-  /// Independent work (e.g. the body's spring forces), run once by the last thread while the first
-  /// one builds the neighbour grid.
+  /// Independent work (e.g. the body's spring forces), run once per evaluation by the last thread,
+  /// in the load phase after its own range.
   std::function<void()> side;
 };
 
 /// Evaluates SPH densities and accelerations for a set of fluid particles. Holds all scratch memory,
-/// so repeated evaluations do not allocate once sizes are stable. With several threads, one
-/// evaluation is one parallel region of five phases (load + mirrors, grid count, grid placement,
-/// density, forces); results are bit-identical for every thread count.
+/// so repeated evaluations do not allocate once sizes are stable.
+///
+/// Neighbours come from Verlet lists: every particle keeps the points within h + skin found by the
+/// cell grid at the last rebuild, and later evaluations test only those. The lists stay complete
+/// while no particle has moved skin/2 or more since the rebuild (a pair within h now was within
+/// h + skin then); the first evaluation that finds such a particle (or a new particle count, or a
+/// changed set of points) rebuilds them. Mirrored twins (§5.1.3) are kept the same way: built for
+/// particles within h + skin/2 of a mirroring wall, moved with their sources every evaluation, and
+/// counted only while the source is within h (exactly the twins of a fresh search).
+///
+/// With several threads, one evaluation is one parallel region: load (+ twins and the displacement
+/// test), then, only when rebuilding, twin tables, grid count and grid placement, then densities and
+/// accelerations. Every particle's sums run over its list in the list's (grid) order on one thread,
+/// so results are bit-identical for every thread count.
 class SphFluid {
  public:
   /// threads in [1, 64].
@@ -71,8 +82,12 @@ class SphFluid {
   /// thread, or fewer than 64 particles, none do).
   std::int64_t evaluations() const { return evaluations_; }
   std::int64_t parallel_evaluations() const { return parallel_evaluations_; }
-  /// Mirrored particles created in the last evaluation.
-  std::size_t mirrored_count() const { return total_ - real_count_; }
+  /// Mirrored twins in the last evaluation (sources within h of a mirroring wall).
+  std::size_t mirrored_count() const;
+  /// How many evaluations rebuilt the neighbour lists (grid search) so far.
+  std::int64_t list_rebuilds() const { return list_rebuilds_; }
+  /// The lists' skin as a fraction of h: they hold every point within (1 + kListSkin) h.
+  static constexpr double kListSkin = 0.25;
 
  private:
   /// Neighbours (r < h, self excluded) found by the density pass, reused by the force pass.
@@ -80,14 +95,21 @@ class SphFluid {
     std::vector<std::uint32_t> index;
     std::vector<double> distance;
   };
-  /// What one thread owns: its mirrors before they are gathered, its bounds, its neighbour list.
+  /// A mirrored twin: its source reflected across wall `a`, then across wall `b` when b >= 0
+  /// (a corner); indices into walls_.
+  struct Twin {
+    std::uint32_t source;
+    std::int32_t a, b;
+  };
+  /// What one thread owns: the twins of its particles, its bounds, its lists.
   struct alignas(64) Part {
-    std::vector<Vec2> mirror_x, mirror_v;
-    std::vector<double> mirror_m;
-    std::vector<std::uint32_t> mirror_source;
+    std::vector<Twin> twins;        ///< from the last rebuild, in source order
+    std::size_t twin_offset = 0;    ///< index of its first twin in all_x_
+    std::size_t active_twins = 0;   ///< twins whose sources are within h of their walls now
+    bool moved = false;             ///< a particle moved skin/2 or more since the rebuild
     Bounds bounds;
     GridLayout layout;
-    std::size_t mirror_offset = 0;  ///< index of its first mirror in all_x_
+    std::vector<std::uint32_t> candidates;  ///< Verlet lists of its particles, back to back
     NeighbourList list;
   };
   struct Inputs {
@@ -100,14 +122,22 @@ class SphFluid {
 
   void evaluate(const Inputs& in, bool accelerations);
   void prepare(std::size_t n);
+  /// True when this evaluation rebuilds the lists (the same answer on every thread once the load
+  /// phase is done).
+  bool rebuilding() const;
   // The phases, each for part `part` (see evaluate()).
-  void load_and_mirror(const Inputs& in, int part);
+  void load_and_check(const Inputs& in, int part);
+  void find_twins(int part);
   void gather_and_count(int part);
-  void place_and_side(const Inputs& in, int part);
+  void place(int part);
   void density_range(int part);
   void acceleration_range(const Inputs& in, int part);
 
-  void add_mirrors(Part& part, std::size_t i, Vec2 x, Vec2 v, double m) const;
+  /// Writes the part's twins after the real particles (position, velocity, mass, source, active).
+  void write_twins(Part& part);
+  Vec2 twin_position(const Twin& t, Vec2 x) const;
+  Vec2 twin_velocity(const Twin& t, Vec2 v) const;
+  bool twin_active(const Twin& t, Vec2 x) const;
   std::pair<std::size_t, std::size_t> real_range(int part) const { return pool_->range(real_count_, part); }
 
   SphParameters parameters_;
@@ -119,15 +149,22 @@ class SphFluid {
   PathChooser chooser_;
   std::int64_t evaluations_ = 0, parallel_evaluations_ = 0;
   NeighbourGrid grid_;
-  std::size_t real_count_ = 0, total_ = 0;
-  // Real particles followed by mirrored ones (SoA); sized for the most mirrors possible.
+  double reach_ = 0.0;  ///< (1 + kListSkin) h: the lists' radius
+  bool force_rebuild_ = true, lists_valid_ = false;
+  std::size_t listed_count_ = 0;  ///< particles at the last rebuild
+  std::int64_t list_rebuilds_ = 0;
+  std::size_t real_count_ = 0;
+  // Real particles followed by their twins (SoA); sized for the most twins possible.
   std::vector<Vec2> all_x_, all_v_;
   std::vector<double> all_m_;
   std::vector<std::uint32_t> origin_;  ///< the real particle each entry is (or mirrors)
+  std::vector<std::uint8_t> active_;   ///< 0 for a twin whose source is h or more from its walls
+  std::vector<Vec2> reference_x_;      ///< positions at the last rebuild
   std::vector<double> rho_, p_;        ///< per real particle
   std::vector<Part> parts_;            ///< one per thread
-  std::vector<NeighbourGrid::Slot> slots_;  ///< every part's real and mirror slot, for the placement
+  std::vector<NeighbourGrid::Slot> slots_;  ///< every part's real and twin slot, for the placement
   std::vector<std::uint32_t> first_, count_;  ///< per real particle: its slice of its part's list
+  std::vector<std::uint32_t> candidates_first_, candidates_count_;  ///< per real particle: its Verlet list
 };
 
 }  // namespace jellysim::sph

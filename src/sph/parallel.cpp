@@ -63,14 +63,21 @@ std::pair<std::size_t, std::size_t> WorkerPool::range(std::size_t n, int part) c
   return {n * p / parts, n * (p + 1) / parts};
 }
 
-void WorkerPool::run_phases(std::span<const Phase> phases, bool parallel) {
+void WorkerPool::run_phases(std::span<const Phase> phases, bool parallel) { run_phases(phases, {}, parallel); }
+
+void WorkerPool::run_phases(std::span<const Phase> phases, std::span<const Gate> gates, bool parallel) {
+  if (!gates.empty() && gates.size() != phases.size()) {
+    throw std::invalid_argument("WorkerPool::run_phases: one gate per phase (or none)");
+  }
   if (helpers_.empty() || !parallel) {  // same parts, one after another on this thread
-    for (const Phase& phase : phases) {
-      for (int part = 0; part < threads(); ++part) phase(part);
+    for (std::size_t k = 0; k < phases.size(); ++k) {
+      if (!gates.empty() && gates[k] && !gates[k]()) continue;
+      for (int part = 0; part < threads(); ++part) phases[k](part);
     }
     return;
   }
   phases_ = phases;
+  gates_ = gates;
   generation_.fetch_add(1, std::memory_order_release);
   generation_.notify_all();  // no system call unless a helper sleeps
   run_my_phases(0);  // ends with a barrier that every helper has passed its last phase
@@ -89,9 +96,13 @@ void WorkerPool::run(std::size_t n, const Body& body) {
 }
 
 void WorkerPool::run_my_phases(int part) {
-  for (const Phase& phase : phases_) {
+  // Read once: after the last barrier the caller may already be setting up the next run.
+  const std::span<const Phase> phases = phases_;
+  const std::span<const Gate> gates = gates_;
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    if (!gates.empty() && gates[k] && !gates[k]()) continue;  // every thread skips it alike
     try {
-      phase(part);
+      phases[k](part);
     } catch (...) {  // keep to the barriers, or the other threads would wait forever
       if (!failed_.exchange(true)) error_ = std::current_exception();
     }

@@ -42,6 +42,12 @@ class WorkerPool {
   /// gives the same results. Returns when all phases are done. An exception thrown by a phase is
   /// rethrown here once every thread has finished (the first one caught; later phases still run).
   void run_phases(std::span<const Phase> phases, bool parallel = true);
+  /// A phase's gate, asked by every thread just before the phase (after the previous barrier):
+  /// false skips the phase and its barrier. It must give every thread the same answer, so it may
+  /// read only data final before that barrier (and write nothing).
+  using Gate = std::function<bool()>;
+  /// As above; `gates[k]` (when non-empty) decides whether phase k runs. gates.size() == phases.size().
+  void run_phases(std::span<const Phase> phases, std::span<const Gate> gates, bool parallel = true);
 
   /// Calls body(begin, end, part) on the ranges of [0, n) (a single phase; serial when n < 64).
   using Body = std::function<void(std::size_t, std::size_t, int)>;
@@ -57,6 +63,7 @@ class WorkerPool {
   alignas(64) std::atomic<std::uint32_t> generation_{0};  ///< bumped once per run_phases call
   std::atomic<bool> stop_{false};
   std::span<const Phase> phases_;
+  std::span<const Gate> gates_;
   std::exception_ptr error_;
   std::atomic<bool> failed_{false};
   // Spin barrier state, on its own cache line.

@@ -368,6 +368,7 @@ class Runner {
     result_.statistics.function_evaluations = system_.evaluations();
     result_.threads = system_.fluid().threads();
     result_.parallel_evaluations = system_.fluid().parallel_evaluations();
+    result_.list_rebuilds = system_.fluid().list_rebuilds();
     result_.statistics.rejected_steps = rejected_before_ + stepper_->statistics().rejected;
     result_.failed = !failure.empty();
     result_.failure = std::move(failure);

@@ -95,6 +95,7 @@ struct RunResult {
   double boundary_width_m = 0.0;  ///< w_b of eq. 5.31 (inf without a body)
   int threads = 1;                     ///< threads of the SPH evaluation
   std::int64_t parallel_evaluations = 0;  ///< SPH evaluations run on all threads (see PathChooser)
+  std::int64_t list_rebuilds = 0;         ///< SPH evaluations that rebuilt the neighbour lists
   bool failed = false;
   std::string failure;
 };

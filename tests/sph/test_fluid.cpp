@@ -126,6 +126,76 @@ TEST(SphFluid, ThreadsGiveBitIdenticalAccelerations) {
   }
 }
 
+/// Accelerations of a fresh fluid object (neighbours from a new grid search) at x, v, m.
+std::vector<Vec2> fresh_accelerations(const std::vector<Vec2>& x, const std::vector<Vec2>& v,
+                                      const std::vector<double>& m, const std::vector<Wall>& walls) {
+  SphFluid fresh(parameters(), walls);
+  std::vector<Vec2> a;
+  fresh.compute_accelerations(x, v, m, a);
+  return a;
+}
+
+/// Largest |a − b| over the particles, relative to the largest |b|.
+double relative_difference(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    diff = std::max(diff, norm(a[i] - b[i]));
+    scale = std::max(scale, norm(b[i]));
+  }
+  return diff / scale;
+}
+
+// The Verlet lists: moves shorter than skin/2 reuse them, a longer one rebuilds them, and either way
+// the forces are those of a fresh grid search (up to the order of the sums), twins included.
+TEST(SphFluid, NeighbourListsFollowSmallMovesAndRebuildAfterLongOnes) {
+  test::Random rng(11);
+  const double h = parameters().smoothing_radius_m, half_skin = 0.5 * SphFluid::kListSkin * h;
+  std::vector<Vec2> x, v;
+  for (int i = 0; i < 400; ++i) {
+    x.push_back(rng.point(0.45));
+    v.push_back(rng.point(0.2));
+  }
+  const std::vector<double> m(x.size(), 1.1);
+  const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
+  for (int threads : {1, 2}) {
+    SphFluid fluid(parameters(), walls, threads);
+    std::vector<Vec2> a, xs = x;
+    fluid.compute_accelerations(xs, v, m, a);
+    EXPECT_EQ(fluid.list_rebuilds(), 1);
+    for (int round = 0; round < 5; ++round) {  // each particle drifts up to 0.9 skin/2 in all
+      for (std::size_t i = 0; i < xs.size(); ++i) xs[i] = x[i] + rng.point(0.9 * half_skin / std::sqrt(2.0));
+      fluid.compute_accelerations(xs, v, m, a);
+      EXPECT_EQ(fluid.list_rebuilds(), 1) << threads << " threads, round " << round;
+      EXPECT_LT(relative_difference(a, fresh_accelerations(xs, v, m, walls)), 1e-12) << threads << " threads";
+    }
+    xs[7] = x[7] + Vec2{1.01 * half_skin, 0.0};  // one particle far enough: the lists are rebuilt
+    fluid.compute_accelerations(xs, v, m, a);
+    EXPECT_EQ(fluid.list_rebuilds(), 2) << threads << " threads";
+    EXPECT_LT(relative_difference(a, fresh_accelerations(xs, v, m, walls)), 1e-12) << threads << " threads";
+    const std::vector<Vec2> fewer(xs.begin(), xs.end() - 1);  // a new particle count rebuilds too
+    fluid.compute_accelerations(fewer, std::vector<Vec2>(v.begin(), v.end() - 1), std::vector<double>(fewer.size(), 1.1), a);
+    EXPECT_EQ(fluid.list_rebuilds(), 3) << threads << " threads";
+  }
+}
+
+// A particle approaching a wall gets its twin as soon as it is within h, without a rebuild; leaving
+// again removes it. The forces match a fresh search at every position.
+TEST(SphWalls, TwinsAppearAndVanishWithoutARebuild) {
+  const std::vector<Wall> walls{Wall{{0.0, 0.0}, {0.0, 1.0}, true}};
+  const double h = parameters().smoothing_radius_m, half_skin = 0.5 * SphFluid::kListSkin * h;
+  SphFluid fluid(parameters(), walls);
+  const std::vector<Vec2> v{{0.0, -0.3}, {0.1, 0.0}};
+  const std::vector<double> m{10.0, 10.0};
+  std::vector<Vec2> a;
+  const auto at = [&](double height) { return std::vector<Vec2>{{0.5, height}, {0.53, h + 0.2 * half_skin}}; };
+  for (double height : {h + 0.4 * half_skin, h - 0.4 * half_skin, h + 0.3 * half_skin}) {
+    fluid.compute_accelerations(at(height), v, m, a);
+    EXPECT_EQ(fluid.mirrored_count(), height < h ? 1u : 0u) << height;
+    EXPECT_LT(relative_difference(a, fresh_accelerations(at(height), v, m, walls)), 1e-12) << height;
+  }
+  EXPECT_EQ(fluid.list_rebuilds(), 1);
+}
+
 TEST(SphWalls, MirroredTwinsRepelParticlesFromAWall) {
   SphFluid fluid(parameters(), {Wall{{0.0, 0.0}, {0.0, 1.0}, true}});
   std::vector<Vec2> a;
