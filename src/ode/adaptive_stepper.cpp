@@ -86,7 +86,7 @@ double AdaptiveStepper::step_factor(double err) const {
 double AdaptiveStepper::accept(double& t, Vector& y, double dt, double dt_try, double factor, double& dt_taken) {
   ++stats_.accepted;
   t += dt;
-  y = y_new_;
+  y.swap(y_new_);  // no copy: the entries stay where the last stage wrote them
   dt_taken = dt;
   const double suggested = dt * factor;
   // A step cut short by dt_limit says nothing against the longer dt_try unless it asks to shrink.

@@ -15,6 +15,22 @@ void DerivativeCache::store(const OdeSystem& system, double t, const Vector& y, 
   f_ = f;
 }
 
+bool DerivativeCache::take(const OdeSystem& system, double t, const Vector& y, Vector& f) {
+  const bool hit = system_ == &system && t_ == t && y_.size() == y.size() && (y_.array() == y.array()).all();
+  if (hit) {
+    f.swap(f_);
+    clear();
+  }
+  return hit;
+}
+
+void DerivativeCache::store_by_swap(const OdeSystem& system, double t, const Vector& y, Vector& f) {
+  system_ = &system;
+  t_ = t;
+  y_ = y;
+  f_.swap(f);
+}
+
 void DerivativeCache::evaluate(const OdeSystem& system, double t, const Vector& y, Vector& f) {
   if (lookup(system, t, y, f)) return;
   f.resize(system.dimension());

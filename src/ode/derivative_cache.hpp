@@ -11,6 +11,12 @@ class DerivativeCache {
   /// Copies the stored f into `f` when (system, t, y) equal the stored point exactly.
   bool lookup(const OdeSystem& system, double t, const Vector& y, Vector& f) const;
   void store(const OdeSystem& system, double t, const Vector& y, const Vector& f);
+  /// As lookup(), but hands the stored f over by swapping it into `f` (no copy) and forgets it.
+  bool take(const OdeSystem& system, double t, const Vector& y, Vector& f);
+  /// As store(), but keeps f by swapping it in (no copy): `f` is left with unspecified contents.
+  /// Moving vectors instead of copying them leaves every entry in the buffer, and so in the cache
+  /// of the core, that wrote it (a system evaluated in parallel parts writes its own entries).
+  void store_by_swap(const OdeSystem& system, double t, const Vector& y, Vector& f);
   /// f(t, y) from memory when possible, otherwise evaluated and stored.
   void evaluate(const OdeSystem& system, double t, const Vector& y, Vector& f);
   void clear() { system_ = nullptr; }

@@ -19,15 +19,19 @@ StepOutcome ExplicitRungeKutta::step(const OdeSystem& system, double t, double d
     system.stage_derivative(t + tableau_.c[i] * dt, y, dt, tableau_.a[i], k_, stage_y_, k_[i]);
   if (tableau_.fsal) {  // last row of A equals b, so the last stage is evaluated at y_out itself
     system.stage_derivative(t + dt, y, dt, tableau_.b, k_, y_out, k_[stages - 1]);
-    end_.store(system, t + dt, y_out, k_[stages - 1]);
   } else {
     y_out = y;
     add_stages(dt, tableau_.b, y_out);
   }
-  if (error == nullptr || !has_embedded_pair()) return {};
-  error->setZero(y.size());
-  add_stages(dt, error_weights_, *error);
-  return {.ok = true, .has_error = true};
+  StepOutcome outcome;
+  if (error != nullptr && has_embedded_pair()) {
+    error->setZero(y.size());
+    add_stages(dt, error_weights_, *error);
+    outcome.has_error = true;
+  }
+  // The last stage moves into the cache (k_ is scratch from here on) rather than being copied.
+  if (tableau_.fsal) end_.store_by_swap(system, t + dt, y_out, k_[stages - 1]);
+  return outcome;
 }
 
 void ExplicitRungeKutta::reset() {
@@ -36,8 +40,8 @@ void ExplicitRungeKutta::reset() {
 }
 
 void ExplicitRungeKutta::first_stage(const OdeSystem& system, double t, const Vector& y) {
-  for (Vector& k : k_) k.resize(y.size());
-  if (end_.lookup(system, t, y, k_[0])) {
+  for (Vector& k : k_) k.resize(y.size());  // a swap with the caches may have left one empty
+  if (end_.take(system, t, y, k_[0])) {
     start_.store(system, t, y, k_[0]);  // a rejected attempt is retried from here
   } else {
     start_.evaluate(system, t, y, k_[0]);

@@ -174,7 +174,7 @@ void SphFluid::load_and_check(const Inputs& in, int part_index) {
   }
   part.moved = moved;
   if (!force_rebuild_) write_twins(part);  // a rebuild writes them again from new tables
-  if (part_index + 1 == static_cast<int>(parts_.size()) && in.hooks != nullptr && in.hooks->side) in.hooks->side();
+  if (part_index == 0 && in.hooks != nullptr && in.hooks->side) in.hooks->side();
 }
 
 // Rebuild, phase 2: the twins of the part's particles within h + skin/2 of mirroring walls (a

@@ -359,7 +359,11 @@ class Runner {
     const CollisionStatistics s = handler_.handle(particles, m > 0 ? body : MovingPoints{}, scene_.outline, scene_.walls, dt);
     if (s.edge_collisions + s.wall_collisions == 0) return;
     result_.collisions += s;
-    for (std::size_t i = 0; i < n; ++i) { set(y, i, x1_[i]); set(y, half + i, v1_[i]); }
+    // Only what changed: every write here pulls the entry's cache line to this thread's core.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (x1_[i] != get(y, i)) set(y, i, x1_[i]);
+      if (v1_[i] != get(y, half + i)) set(y, half + i, v1_[i]);
+    }
     for (std::size_t i = 0; i < m; ++i) { set(y, n + i, b1_[i]); set(y, half + n + i, bv_[i]); }
   }
 
