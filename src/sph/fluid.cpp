@@ -52,7 +52,10 @@ std::size_t SphFluid::mirrored_count() const {
 // Sizes every buffer for n real particles and the most twins they can have, so the parallel
 // phases never allocate shared memory.
 void SphFluid::prepare(std::size_t n) {
-  if (n != listed_count_ || !lists_valid_) force_rebuild_ = true;
+  if (n != listed_count_ || !lists_valid_) {
+    force_rebuild_ = true;
+    split_ = next_split_ = equal_split(n);
+  }
   real_count_ = n;
   const std::size_t capacity = n * (1 + max_mirrors_per_particle_);
   if (all_x_.size() < capacity) {
@@ -71,6 +74,64 @@ void SphFluid::prepare(std::size_t n) {
   candidates_count_.resize(n);
   grid_.reserve(capacity, 2 * parts_.size());
   slots_.reserve(2 * parts_.size());
+}
+
+std::vector<std::size_t> SphFluid::equal_split(std::size_t n) const {
+  std::vector<std::size_t> split(parts_.size() + 1);
+  for (std::size_t p = 0; p < split.size(); ++p) split[p] = pool_->range(n, static_cast<int>(p)).first;
+  split.back() = n;
+  return split;
+}
+
+namespace {
+
+/// Work units of a particle: its Verlet list (the density pass tests every entry, the force pass
+/// the closer ~64 %), plus a little for loading it.
+constexpr std::uint64_t kLoadCost = 2;
+
+}  // namespace
+
+void SphFluid::update_speeds() {
+  speed_.resize(parts_.size(), 0.0);
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    Part& part = parts_[p];
+    if (part.work_seconds > 0.0 && part.work_cost > 0) {
+      const double measured = static_cast<double>(part.work_cost) / part.work_seconds;
+      speed_[p] = speed_[p] > 0.0 ? 0.7 * speed_[p] + 0.3 * measured : measured;  // smooths the noise
+    }
+    part.work_seconds = 0.0;
+    part.work_cost = 0;
+  }
+}
+
+std::vector<std::size_t> SphFluid::balanced_split() const {
+  const std::size_t n = real_count_, parts = parts_.size();
+  // Shares in proportion to speed, kept within [1/2, 3/2] of an equal share.
+  std::vector<double> share(parts, 1.0 / static_cast<double>(parts));
+  const bool timed = speed_.size() == parts && std::all_of(speed_.begin(), speed_.end(), [](double v) { return v > 0.0; });
+  if (timed) {
+    double sum = 0.0;
+    for (double v : speed_) sum += v;
+    double clamped = 0.0;
+    for (std::size_t p = 0; p < parts; ++p) {
+      share[p] = std::clamp(speed_[p] / sum, 0.5 / static_cast<double>(parts), 1.5 / static_cast<double>(parts));
+      clamped += share[p];
+    }
+    for (double& v : share) v /= clamped;
+  }
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) total += static_cast<double>(kLoadCost + candidates_count_[i]);
+  std::vector<std::size_t> split(parts + 1, n);
+  split[0] = 0;
+  double done = 0.0, target = total * share[0];
+  for (std::size_t i = 0, p = 1; i < n && p < parts; ++i) {
+    while (p < parts && done >= target) {
+      split[p] = i;
+      target += total * share[p++];
+    }
+    done += static_cast<double>(kLoadCost + candidates_count_[i]);
+  }
+  return split;
 }
 
 bool SphFluid::rebuilding() const {
@@ -107,12 +168,16 @@ void SphFluid::evaluate(const Inputs& in, bool accelerations) {
   lists_valid_ = false;  // until the evaluation completes
   const bool serial = pool_->threads() == 1 || real_count_ < 64;  // one thread, or too little work to share
   const bool parallel = !serial && chooser_.parallel();
+  timing_ = parallel;
   const auto start = std::chrono::steady_clock::now();
   pool_->run_phases(run, gated, parallel);
   const bool rebuilt = rebuilding();
   if (rebuilt) {
     ++list_rebuilds_;
     listed_count_ = real_count_;
+    split_ = next_split_;
+    update_speeds();
+    next_split_ = balanced_split();
   }
   force_rebuild_ = false;
   for (Part& part : parts_) part.moved = false;
@@ -158,7 +223,7 @@ void SphFluid::write_twins(Part& part) {
 }
 
 void SphFluid::load_and_check(const Inputs& in, int part_index) {
-  const auto [begin, end] = real_range(part_index);
+  const auto [begin, end] = part_range(split_, part_index);
   if (in.hooks != nullptr && in.hooks->load) in.hooks->load(begin, end);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
   const std::vector<Vec2>& x = *in.x;
@@ -181,7 +246,7 @@ void SphFluid::load_and_check(const Inputs& in, int part_index) {
 // source moves less than skin/2 before the next rebuild, so no twin can be missing), the reference
 // positions and the part's bounds (twins included, at their current positions).
 void SphFluid::find_twins(int part_index) {
-  const auto [begin, end] = real_range(part_index);
+  const auto [begin, end] = part_range(next_split_, part_index);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
   part.twins.clear();
   part.bounds = {};
@@ -229,7 +294,7 @@ void SphFluid::gather_and_count(int part_index) {
   part.twin_offset = offset;
   part.layout = GridLayout::make(bounds, reach_, total);
   write_twins(part);
-  const auto [begin, end] = real_range(part_index);
+  const auto [begin, end] = part_range(next_split_, part_index);
   grid_.count(part.layout, all_x_.data(), begin, end, p);
   grid_.count(part.layout, all_x_.data(), offset, offset + part.twins.size(), parts + p);
 }
@@ -239,7 +304,7 @@ void SphFluid::place(int part_index) {
   const std::size_t parts = parts_.size();
   slots_.clear();
   for (std::size_t p = 0; p < parts; ++p) {
-    const auto [begin, end] = real_range(static_cast<int>(p));
+    const auto [begin, end] = part_range(next_split_, static_cast<int>(p));
     slots_.push_back({p, begin, end});
   }
   for (std::size_t p = 0; p < parts; ++p) {
@@ -250,14 +315,17 @@ void SphFluid::place(int part_index) {
 }
 
 void SphFluid::density_range(int part_index) {
-  const auto [begin, end] = real_range(part_index);
+  const auto [begin, end] = part_range(work_split(), part_index);
   const double h2 = kernels_.h2(), poly6 = kernels_.poly6_r2(0.0) / (h2 * h2 * h2), reach2 = reach_ * reach_;
   Part& part = parts_[static_cast<std::size_t>(part_index)];
   NeighbourList& list = part.list;
   list.index.clear();
   list.distance.clear();
   const bool rebuild = rebuilding();
+  const bool timed = timing_ && !rebuild;  // a rebuild's search is not the usual work
+  const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   if (rebuild) part.candidates.clear();
+  std::uint64_t cost = 0;
   for (std::size_t i = begin; i < end; ++i) {
     const Vec2 xi = all_x_[i];
     double rho = all_m_[i] * poly6 * h2 * h2 * h2;  // the particle itself
@@ -289,18 +357,26 @@ void SphFluid::density_range(int part_index) {
     count_[i] = static_cast<std::uint32_t>(list.index.size()) - first_[i];
     rho_[i] = rho;
     p_[i] = parameters_.gas_constant * (rho - parameters_.rest_density);  // equation of state
+    cost += kLoadCost + candidates_count_[i];
+  }
+  if (timed) {
+    part.work_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    part.work_cost += cost;
   }
 }
 
 void SphFluid::acceleration_range(const Inputs& in, int part_index) {
-  const auto [begin, end] = real_range(part_index);
+  const auto [begin, end] = part_range(work_split(), part_index);
   std::vector<Vec2>& a = *in.a;
   const double h = kernels_.h();
   const double mu = parameters_.viscosity * parameters_.rest_density;  // μ = ν ρ0
   // a = −(1/ρ_i) Σ ... ∇W: the kernel's −30/(π h⁵) and the minus sign of the force give +30/(π h⁵).
   const double spiky_gradient = -kernels_.spiky_derivative(0.0) / (h * h);
   const double viscosity_laplacian = kernels_.viscosity_laplacian(0.0) / h;
-  const NeighbourList& list = parts_[static_cast<std::size_t>(part_index)].list;
+  Part& part = parts_[static_cast<std::size_t>(part_index)];
+  const bool timed = timing_ && !rebuilding();
+  const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  const NeighbourList& list = part.list;
   for (std::size_t i = begin; i < end; ++i) {
     const Vec2 xi = all_x_[i], vi = all_v_[i];
     const double p_i = p_[i];
@@ -320,6 +396,7 @@ void SphFluid::acceleration_range(const Inputs& in, int part_index) {
     a[i] = pressure * (spiky_gradient / rho_i) + viscous * (mu * viscosity_laplacian / rho_i);
   }
   if (in.hooks != nullptr && in.hooks->store) in.hooks->store(begin, end);
+  if (timed) part.work_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void SphFluid::compute_density(const std::vector<Vec2>& x, const std::vector<Vec2>& v, const std::vector<double>& m) {

@@ -110,6 +110,8 @@ class SphFluid {
     Bounds bounds;
     GridLayout layout;
     std::vector<std::uint32_t> candidates;  ///< Verlet lists of its particles, back to back
+    double work_seconds = 0.0;              ///< its density and force phases since the last rebuild
+    std::uint64_t work_cost = 0;            ///< the work units (see balanced_split) they did
     NeighbourList list;
   };
   struct Inputs {
@@ -138,7 +140,19 @@ class SphFluid {
   Vec2 twin_position(const Twin& t, Vec2 x) const;
   Vec2 twin_velocity(const Twin& t, Vec2 v) const;
   bool twin_active(const Twin& t, Vec2 x) const;
-  std::pair<std::size_t, std::size_t> real_range(int part) const { return pool_->range(real_count_, part); }
+  /// The real particles of part `part` under the split points `split` (parts_.size() + 1 of them).
+  static std::pair<std::size_t, std::size_t> part_range(const std::vector<std::size_t>& split, int part) {
+    return {split[static_cast<std::size_t>(part)], split[static_cast<std::size_t>(part) + 1]};
+  }
+  /// The split the density and force phases use in this evaluation (the next one when rebuilding).
+  const std::vector<std::size_t>& work_split() const { return rebuilding() ? next_split_ : split_; }
+  /// Equal particle counts per part.
+  std::vector<std::size_t> equal_split(std::size_t n) const;
+  /// Work units per part in proportion to its measured speed (equal work until the parts were
+  /// timed), a particle's units being its Verlet list's length plus a little for loading it.
+  std::vector<std::size_t> balanced_split() const;
+  /// Folds the parts' timings since the last rebuild into speed_ (units per second).
+  void update_speeds();
 
   SphParameters parameters_;
   Kernels kernels_;
@@ -162,6 +176,16 @@ class SphFluid {
   std::vector<Vec2> reference_x_;      ///< positions at the last rebuild
   std::vector<double> rho_, p_;        ///< per real particle
   std::vector<Part> parts_;            ///< one per thread
+  /// Which real particles each part owns: split_[p] .. split_[p + 1]. Parts keep the particles of
+  /// the last rebuild (their twin tables and Verlet lists), so the split changes only at a rebuild,
+  /// to next_split_, which balances the lists' lengths of that rebuild (densities differ across the
+  /// fluid, and with them the work per particle).
+  std::vector<std::size_t> split_, next_split_;
+  /// Work units per second of each part in parallel runs (0 until measured). The parts need not be
+  /// equally fast: the first one also runs the body's forces and the integrator between
+  /// evaluations, and a virtual core may be slowed by its neighbours.
+  std::vector<double> speed_;
+  bool timing_ = false;  ///< this evaluation runs in parallel: the parts time their work
   std::vector<NeighbourGrid::Slot> slots_;  ///< every part's real and twin slot, for the placement
   std::vector<std::uint32_t> first_, count_;  ///< per real particle: its slice of its part's list
   std::vector<std::uint32_t> candidates_first_, candidates_count_;  ///< per real particle: its Verlet list
