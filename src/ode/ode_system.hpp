@@ -53,15 +53,9 @@ class OdeSystem {
 
  protected:
   virtual void compute_derivative(double t, const Vector& y, Vector& dydt) const = 0;
-  /// Forms y_stage with vector operations, then calls compute_derivative.
+  /// Forms y_stage (form_stage_state, ode/stage_sum.hpp), then calls compute_derivative.
   virtual void compute_stage_derivative(double t, const Vector& y, double h, std::span<const double> weights,
-                                        std::span<const Vector> k, Vector& y_stage, Vector& dydt) const {
-    y_stage = y;
-    for (std::size_t j = 0; j < weights.size(); ++j) {
-      if (weights[j] != 0.0) y_stage += (h * weights[j]) * k[j];
-    }
-    compute_derivative(t, y_stage, dydt);
-  }
+                                        std::span<const Vector> k, Vector& y_stage, Vector& dydt) const;
   virtual void compute_jacobian(double /*t*/, const Vector& /*y*/, SparseMatrix& /*jac*/) const {}
 
  private:

@@ -1,6 +1,7 @@
 #include "sph/scene.hpp"
 
 #include "elastic/forces.hpp"
+#include "ode/stage_sum.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,7 +90,7 @@ void CoupledSystem::compute_derivative(double t, const ode::Vector& y, ode::Vect
 }
 
 /// The Runge–Kutta stage state y + h Σ_j w_j k_j (eq. 2.38) on the Vec2 entries [first, last):
-/// OdeSystem's vector sums restricted to that segment (the same operations in the same order).
+/// OdeSystem's sums restricted to that segment (the same operations in the same order).
 struct CoupledSystem::StageSum {
   const ode::Vector* y;
   double h;
@@ -97,12 +98,8 @@ struct CoupledSystem::StageSum {
   std::span<const ode::Vector> k;
   ode::Vector* out;
   void form(std::size_t first, std::size_t last) const {
-    const auto start = static_cast<Eigen::Index>(2 * first), length = static_cast<Eigen::Index>(2 * (last - first));
-    auto segment = out->segment(start, length);
-    segment = y->segment(start, length);
-    for (std::size_t j = 0; j < w.size(); ++j) {
-      if (w[j] != 0.0) segment += (h * w[j]) * k[j].segment(start, length);
-    }
+    ode::form_stage_segment(*y, h, w, k, *out, static_cast<Eigen::Index>(2 * first),
+                            static_cast<Eigen::Index>(2 * (last - first)));
   }
 };
 
