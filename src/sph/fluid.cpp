@@ -54,7 +54,7 @@ std::size_t SphFluid::mirrored_count() const {
 void SphFluid::prepare(std::size_t n) {
   if (n != listed_count_ || !lists_valid_) {
     force_rebuild_ = true;
-    split_ = next_split_ = equal_split(n);
+    split_ = next_split_ = load_split_ = next_load_split_ = equal_split(n);
   }
   real_count_ = n;
   const std::size_t capacity = n * (1 + max_mirrors_per_particle_);
@@ -91,17 +91,49 @@ constexpr std::uint64_t kLoadCost = 2;
 
 }  // namespace
 
+namespace {
+
+/// Exponential smoothing of a noisy timing; the first measurement is taken as it is.
+double smooth(double old, double measured) { return old > 0.0 ? 0.7 * old + 0.3 * measured : measured; }
+
+}  // namespace
+
 void SphFluid::update_speeds() {
   speed_.resize(parts_.size(), 0.0);
+  load_rate_.resize(parts_.size(), 0.0);
   for (std::size_t p = 0; p < parts_.size(); ++p) {
     Part& part = parts_[p];
     if (part.work_seconds > 0.0 && part.work_cost > 0) {
-      const double measured = static_cast<double>(part.work_cost) / part.work_seconds;
-      speed_[p] = speed_[p] > 0.0 ? 0.7 * speed_[p] + 0.3 * measured : measured;  // smooths the noise
+      speed_[p] = smooth(speed_[p], static_cast<double>(part.work_cost) / part.work_seconds);
     }
-    part.work_seconds = 0.0;
-    part.work_cost = 0;
+    if (part.load_seconds > 0.0 && part.loaded > 0) {
+      load_rate_[p] = smooth(load_rate_[p], part.load_seconds / static_cast<double>(part.loaded));
+      if (p == 0) side_time_ = smooth(side_time_, part.side_seconds / static_cast<double>(part.loads));
+    }
+    part.work_seconds = part.load_seconds = part.side_seconds = 0.0;
+    part.work_cost = part.loaded = part.loads = 0;
   }
+}
+
+std::vector<std::size_t> SphFluid::balanced_load_split() const {
+  const std::size_t n = real_count_, parts = parts_.size();
+  const bool timed = load_rate_.size() == parts && std::all_of(load_rate_.begin(), load_rate_.end(), [](double r) { return r > 0.0; });
+  if (!timed) return equal_split(n);
+  // Part p loads c_p particles in c_p r_p (+ the side time for p = 0); equal times T with Σ c_p = n.
+  double inverse_rates = 0.0, side_particles = side_time_ / load_rate_[0];
+  for (double r : load_rate_) inverse_rates += 1.0 / r;
+  const double target = (static_cast<double>(n) + side_particles) / inverse_rates;
+  std::vector<std::size_t> split(parts + 1, n);
+  split[0] = 0;
+  double at = 0.0;
+  for (std::size_t p = 0; p + 1 < parts; ++p) {
+    const double own = std::max(0.0, target / load_rate_[p] - (p == 0 ? side_particles : 0.0));
+    // Never below half an equal share: the loaded entries are written by the force phase's owner.
+    at += std::max(own, 0.5 * static_cast<double>(n) / static_cast<double>(parts));
+    split[p + 1] = std::min(n, static_cast<std::size_t>(std::llround(at)));
+    split[p + 1] = std::max(split[p + 1], split[p]);
+  }
+  return split;
 }
 
 std::vector<std::size_t> SphFluid::balanced_split() const {
@@ -176,8 +208,10 @@ void SphFluid::evaluate(const Inputs& in, bool accelerations) {
     ++list_rebuilds_;
     listed_count_ = real_count_;
     split_ = next_split_;
+    load_split_ = next_load_split_;
     update_speeds();
     next_split_ = balanced_split();
+    next_load_split_ = balanced_load_split();
   }
   force_rebuild_ = false;
   for (Part& part : parts_) part.moved = false;
@@ -223,7 +257,9 @@ void SphFluid::write_twins(Part& part) {
 }
 
 void SphFluid::load_and_check(const Inputs& in, int part_index) {
-  const auto [begin, end] = part_range(split_, part_index);
+  const auto [begin, end] = part_range(load_split_, part_index);
+  using Clock = std::chrono::steady_clock;
+  const auto start = timing_ ? Clock::now() : Clock::time_point{};
   if (in.hooks != nullptr && in.hooks->load) in.hooks->load(begin, end);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
   const std::vector<Vec2>& x = *in.x;
@@ -239,14 +275,21 @@ void SphFluid::load_and_check(const Inputs& in, int part_index) {
   }
   part.moved = moved;
   if (!force_rebuild_) write_twins(part);  // a rebuild writes them again from new tables
+  const auto loaded = timing_ ? Clock::now() : Clock::time_point{};
   if (part_index == 0 && in.hooks != nullptr && in.hooks->side) in.hooks->side();
+  if (timing_) {
+    part.load_seconds += std::chrono::duration<double>(loaded - start).count();
+    part.side_seconds += std::chrono::duration<double>(Clock::now() - loaded).count();
+    part.loaded += end - begin;
+    ++part.loads;
+  }
 }
 
 // Rebuild, phase 2: the twins of the part's particles within h + skin/2 of mirroring walls (a
 // source moves less than skin/2 before the next rebuild, so no twin can be missing), the reference
 // positions and the part's bounds (twins included, at their current positions).
 void SphFluid::find_twins(int part_index) {
-  const auto [begin, end] = part_range(next_split_, part_index);
+  const auto [begin, end] = part_range(next_load_split_, part_index);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
   part.twins.clear();
   part.bounds = {};

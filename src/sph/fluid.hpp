@@ -112,6 +112,9 @@ class SphFluid {
     std::vector<std::uint32_t> candidates;  ///< Verlet lists of its particles, back to back
     double work_seconds = 0.0;              ///< its density and force phases since the last rebuild
     std::uint64_t work_cost = 0;            ///< the work units (see balanced_split) they did
+    double load_seconds = 0.0;              ///< its load phases since the last rebuild, side work apart
+    double side_seconds = 0.0;              ///< the side work it ran in them
+    std::uint64_t loaded = 0, loads = 0;    ///< particles it loaded in them, and how many phases
     NeighbourList list;
   };
   struct Inputs {
@@ -151,8 +154,12 @@ class SphFluid {
   /// Work units per part in proportion to its measured speed (equal work until the parts were
   /// timed), a particle's units being its Verlet list's length plus a little for loading it.
   std::vector<std::size_t> balanced_split() const;
-  /// Folds the parts' timings since the last rebuild into speed_ (units per second).
+  /// Folds the parts' timings since the last rebuild into speed_ (units per second) and
+  /// load_rate_ / side_seconds_.
   void update_speeds();
+  /// Particles per part for the load phase such that each part's load, plus the side work on the
+  /// first one, takes the same time (equal counts until the parts were timed).
+  std::vector<std::size_t> balanced_load_split() const;
 
   SphParameters parameters_;
   Kernels kernels_;
@@ -185,6 +192,11 @@ class SphFluid {
   /// equally fast: the first one also runs the body's forces and the integrator between
   /// evaluations, and a virtual core may be slowed by its neighbours.
   std::vector<double> speed_;
+  /// The load phase has its own split: the first part also runs the side work (the body's forces,
+  /// a few microseconds), which its other phases cannot make up for. Twin tables follow this split.
+  std::vector<std::size_t> load_split_, next_load_split_;
+  std::vector<double> load_rate_;  ///< seconds per particle loaded, per part (0 until measured)
+  double side_time_ = 0.0;         ///< seconds of side work per evaluation
   bool timing_ = false;  ///< this evaluation runs in parallel: the parts time their work
   std::vector<NeighbourGrid::Slot> slots_;  ///< every part's real and twin slot, for the placement
   std::vector<std::uint32_t> first_, count_;  ///< per real particle: its slice of its part's list

@@ -178,6 +178,34 @@ TEST(SphFluid, NeighbourListsFollowSmallMovesAndRebuildAfterLongOnes) {
   }
 }
 
+// Over a drifting sequence of states the lists are reused and rebuilt, and the parts' ranges move
+// (balanced by the lists' lengths and the measured speed of each thread); none of that changes a bit.
+TEST(SphFluid, ThreadsStayBitIdenticalWhileListsAndRangesChange) {
+  test::Random rng(23);
+  std::vector<Vec2> x, v;
+  for (int i = 0; i < 700; ++i) {
+    const Vec2 p = rng.point(0.48);
+    x.push_back({p.x, 0.5 * p.y - 0.24 + 0.2 * p.x * p.x});  // uneven density: uneven work per particle
+    v.push_back(rng.point(1.0));
+  }
+  const std::vector<double> m(x.size(), 0.9);
+  const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
+  SphFluid one(parameters(), walls, 1), two(parameters(), walls, 2), three(parameters(), walls, 3);
+  std::vector<Vec2> a1, a2, a3;
+  for (int step = 0; step < 40; ++step) {
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] += v[i] * 0.002;  // 2 mm: a rebuild every few steps
+    one.compute_accelerations(x, v, m, a1);
+    two.compute_accelerations(x, v, m, a2);
+    three.compute_accelerations(x, v, m, a3);
+    ASSERT_EQ(a1, a2) << "step " << step;
+    ASSERT_EQ(a1, a3) << "step " << step;
+    ASSERT_EQ(one.mirrored_count(), three.mirrored_count()) << "step " << step;
+  }
+  EXPECT_GT(one.list_rebuilds(), 3);
+  EXPECT_LT(one.list_rebuilds(), 30);
+  EXPECT_EQ(one.list_rebuilds(), three.list_rebuilds());
+}
+
 // A particle approaching a wall gets its twin as soon as it is within h, without a rebuild; leaving
 // again removes it. The forces match a fresh search at every position.
 TEST(SphWalls, TwinsAppearAndVanishWithoutARebuild) {
