@@ -1,5 +1,7 @@
 #include "ode/explicit_runge_kutta.hpp"
 
+#include "ode/stage_sum.hpp"
+
 #include <utility>
 
 namespace jellysim::ode {
@@ -20,13 +22,11 @@ StepOutcome ExplicitRungeKutta::step(const OdeSystem& system, double t, double d
   if (tableau_.fsal) {  // last row of A equals b, so the last stage is evaluated at y_out itself
     system.stage_derivative(t + dt, y, dt, tableau_.b, k_, y_out, k_[stages - 1]);
   } else {
-    y_out = y;
-    add_stages(dt, tableau_.b, y_out);
+    form_stage_state(y, dt, tableau_.b, k_, y_out);
   }
   StepOutcome outcome;
   if (error != nullptr && has_embedded_pair()) {
-    error->setZero(y.size());
-    add_stages(dt, error_weights_, *error);
+    form_weighted_sum(dt, error_weights_, k_, *error);
     outcome.has_error = true;
   }
   // The last stage moves into the cache (k_ is scratch from here on) rather than being copied.
@@ -45,12 +45,6 @@ void ExplicitRungeKutta::first_stage(const OdeSystem& system, double t, const Ve
     start_.store(system, t, y, k_[0]);  // a rejected attempt is retried from here
   } else {
     start_.evaluate(system, t, y, k_[0]);
-  }
-}
-
-void ExplicitRungeKutta::add_stages(double dt, const std::vector<double>& weights, Vector& out) const {
-  for (std::size_t j = 0; j < weights.size(); ++j) {
-    if (weights[j] != 0.0) out += (dt * weights[j]) * k_[j];
   }
 }
 

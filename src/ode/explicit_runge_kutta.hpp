@@ -28,8 +28,6 @@ class ExplicitRungeKutta final : public Integrator {
 
  private:
   void first_stage(const OdeSystem& system, double t, const Vector& y);
-  /// out += dt Σ_j weights_j k_j, skipping zero weights (their stages may not be computed yet).
-  void add_stages(double dt, const std::vector<double>& weights, Vector& out) const;
 
   ButcherTableau tableau_;
   std::vector<double> error_weights_;  ///< b - b_hat: the error estimate is dt Σ (b_i - b_hat_i) k_i

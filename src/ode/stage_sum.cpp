@@ -40,8 +40,11 @@ void assign(Eigen::Ref<Eigen::VectorXd> out, const Base& base, const Terms& t, E
 
 }  // namespace
 
-void form_stage_segment(const Vector& y, double h, std::span<const double> weights, std::span<const Vector> k,
-                        Vector& out, Eigen::Index start, Eigen::Index length) {
+namespace {
+
+/// The passes of form_stage_segment; without y (nullptr) the first pass starts from zero.
+void form_segment(const Vector* y, double h, std::span<const double> weights, std::span<const Vector> k, Vector& out,
+                  Eigen::Index start, Eigen::Index length) {
   auto segment = out.segment(start, length);
   bool first_pass = true;
   std::size_t j = 0;
@@ -55,14 +58,29 @@ void form_stage_segment(const Vector& y, double h, std::span<const double> weigh
       t.k[t.count] = &k[j];
       ++t.count;
     }
-    if (first_pass) {
-      assign(segment, y.segment(start, length), t, start, length);
+    if (first_pass && y != nullptr) {
+      assign(segment, y->segment(start, length), t, start, length);
+    } else if (first_pass) {
+      assign(segment, Vector::Zero(length), t, start, length);
     } else {
       const Vector partial = segment;  // the fold reads its base while writing: keep it apart
       assign(segment, partial, t, start, length);
     }
     first_pass = false;
   } while (j < weights.size());
+}
+
+}  // namespace
+
+void form_stage_segment(const Vector& y, double h, std::span<const double> weights, std::span<const Vector> k,
+                        Vector& out, Eigen::Index start, Eigen::Index length) {
+  form_segment(&y, h, weights, k, out, start, length);
+}
+
+void form_weighted_sum(double h, std::span<const double> weights, std::span<const Vector> k, Vector& out) {
+  const Eigen::Index n = k.empty() ? 0 : k[0].size();
+  out.resize(n);
+  form_segment(nullptr, h, weights, k, out, 0, n);
 }
 
 void form_stage_state(const Vector& y, double h, std::span<const double> weights, std::span<const Vector> k,

@@ -15,6 +15,10 @@ namespace jellysim::ode {
 void form_stage_segment(const Vector& y, double h, std::span<const double> weights, std::span<const Vector> k,
                         Vector& out, Eigen::Index start, Eigen::Index length);
 
+/// out (resized to the size of the k[j]) = h Σ_j weights[j] k[j], rounded as `out = 0` followed by
+/// the term-by-term additions (an embedded error estimate, eq. 2.40).
+void form_weighted_sum(double h, std::span<const double> weights, std::span<const Vector> k, Vector& out);
+
 /// The whole vector: out (resized) = y + h Σ_j weights[j] k[j].
 void form_stage_state(const Vector& y, double h, std::span<const double> weights, std::span<const Vector> k,
                       Vector& out);
