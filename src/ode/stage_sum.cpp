@@ -38,10 +38,6 @@ void assign(Eigen::Ref<Eigen::VectorXd> out, const Base& base, const Terms& t, E
   }
 }
 
-}  // namespace
-
-namespace {
-
 /// The passes of form_stage_segment; without y (nullptr) the first pass starts from zero.
 void form_segment(const Vector* y, double h, std::span<const double> weights, std::span<const Vector> k, Vector& out,
                   Eigen::Index start, Eigen::Index length) {

@@ -89,10 +89,6 @@ namespace {
 /// the closer ~64 %), plus a little for loading it.
 constexpr std::uint64_t kLoadCost = 2;
 
-}  // namespace
-
-namespace {
-
 /// Exponential smoothing of a noisy timing; the first measurement is taken as it is.
 double smooth(double old, double measured) { return old > 0.0 ? 0.7 * old + 0.3 * measured : measured; }
 
@@ -128,7 +124,8 @@ std::vector<std::size_t> SphFluid::balanced_load_split() const {
   double at = 0.0;
   for (std::size_t p = 0; p + 1 < parts; ++p) {
     const double own = std::max(0.0, target / load_rate_[p] - (p == 0 ? side_particles : 0.0));
-    // Never below half an equal share: the loaded entries are written by the force phase's owner.
+    // Never below half an equal share: a part loads entries of y' that the force phase of another
+    // part wrote, and a far shift would move many of them between cores.
     at += std::max(own, 0.5 * static_cast<double>(n) / static_cast<double>(parts));
     split[p + 1] = std::min(n, static_cast<std::size_t>(std::llround(at)));
     split[p + 1] = std::max(split[p + 1], split[p]);
@@ -172,7 +169,7 @@ bool SphFluid::rebuilding() const {
 
 // One evaluation as phases separated by barriers (WorkerPool::run_phases):
 //   1. load the part's particles into all_*, test how far they moved since the last rebuild, move
-//      their twins (§5.1.3); the last part also runs the side work (the body's forces);
+//      their twins (§5.1.3); the first part also runs the side work (the body's forces);
 //   only when the lists are rebuilt (rebuilding() after phase 1):
 //   2. the twin table of the part's particles (those within h + skin/2 of a mirroring wall);
 //   3. gather the twins after the real particles, histogram the grid cells of the part's points;

@@ -155,7 +155,7 @@ class SphFluid {
   /// timed), a particle's units being its Verlet list's length plus a little for loading it.
   std::vector<std::size_t> balanced_split() const;
   /// Folds the parts' timings since the last rebuild into speed_ (units per second) and
-  /// load_rate_ / side_seconds_.
+  /// load_rate_ / side_time_.
   void update_speeds();
   /// Particles per part for the load phase such that each part's load, plus the side work on the
   /// first one, takes the same time (equal counts until the parts were timed).
@@ -183,10 +183,10 @@ class SphFluid {
   std::vector<Vec2> reference_x_;      ///< positions at the last rebuild
   std::vector<double> rho_, p_;        ///< per real particle
   std::vector<Part> parts_;            ///< one per thread
-  /// Which real particles each part owns: split_[p] .. split_[p + 1]. Parts keep the particles of
-  /// the last rebuild (their twin tables and Verlet lists), so the split changes only at a rebuild,
-  /// to next_split_, which balances the lists' lengths of that rebuild (densities differ across the
-  /// fluid, and with them the work per particle).
+  /// Which real particles each part owns in the density and force phases: split_[p] ..
+  /// split_[p + 1]. A part's Verlet lists belong to these particles, so the split changes only at a
+  /// rebuild, to next_split_ (balanced_split: densities differ across the fluid, and with them the
+  /// work per particle).
   std::vector<std::size_t> split_, next_split_;
   /// Work units per second of each part in parallel runs (0 until measured). The parts need not be
   /// equally fast: the first one also runs the body's forces and the integrator between

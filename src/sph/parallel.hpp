@@ -44,7 +44,7 @@ class WorkerPool {
   void run_phases(std::span<const Phase> phases, bool parallel = true);
   /// A phase's gate, asked by every thread just before the phase (after the previous barrier):
   /// false skips the phase and its barrier. It must give every thread the same answer, so it may
-  /// read only data final before that barrier (and write nothing).
+  /// read only data final before that barrier (and write nothing), and must not throw.
   using Gate = std::function<bool()>;
   /// As above; `gates[k]` (when non-empty) decides whether phase k runs. gates.size() == phases.size().
   void run_phases(std::span<const Phase> phases, std::span<const Gate> gates, bool parallel = true);
