@@ -2,21 +2,29 @@
 
 namespace jellysim::ode {
 
+bool DerivativeCache::holds(const OdeSystem& system, double t, const Vector& y) const {
+  return system_ == &system && t_ == t && y_.size() == y.size() && (y_.array() == y.array()).all();
+}
+
+void DerivativeCache::remember_point(const OdeSystem& system, double t, const Vector& y) {
+  system_ = &system;
+  t_ = t;
+  y_ = y;
+}
+
 bool DerivativeCache::lookup(const OdeSystem& system, double t, const Vector& y, Vector& f) const {
-  const bool hit = system_ == &system && t_ == t && y_.size() == y.size() && (y_.array() == y.array()).all();
+  const bool hit = holds(system, t, y);
   if (hit) f = f_;
   return hit;
 }
 
 void DerivativeCache::store(const OdeSystem& system, double t, const Vector& y, const Vector& f) {
-  system_ = &system;
-  t_ = t;
-  y_ = y;
+  remember_point(system, t, y);
   f_ = f;
 }
 
 bool DerivativeCache::take(const OdeSystem& system, double t, const Vector& y, Vector& f) {
-  const bool hit = system_ == &system && t_ == t && y_.size() == y.size() && (y_.array() == y.array()).all();
+  const bool hit = holds(system, t, y);
   if (hit) {
     f.swap(f_);
     clear();
@@ -25,9 +33,7 @@ bool DerivativeCache::take(const OdeSystem& system, double t, const Vector& y, V
 }
 
 void DerivativeCache::store_by_swap(const OdeSystem& system, double t, const Vector& y, Vector& f) {
-  system_ = &system;
-  t_ = t;
-  y_ = y;
+  remember_point(system, t, y);
   f_.swap(f);
 }
 

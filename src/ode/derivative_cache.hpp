@@ -22,6 +22,10 @@ class DerivativeCache {
   void clear() { system_ = nullptr; }
 
  private:
+  /// Whether the stored f belongs to exactly (system, t, y).
+  bool holds(const OdeSystem& system, double t, const Vector& y) const;
+  void remember_point(const OdeSystem& system, double t, const Vector& y);
+
   const OdeSystem* system_ = nullptr;
   double t_ = 0.0;
   Vector y_, f_;

@@ -99,13 +99,19 @@ TEST(SphFluid, PairForcesConserveMomentum) {
   }
 }
 
+/// `count` particles uniformly in the square of half-width `half_width` with velocities uniform in
+/// the square of half-width `speed`.
+void scatter(test::Random& rng, int count, double half_width, double speed, std::vector<Vec2>& x, std::vector<Vec2>& v) {
+  for (int i = 0; i < count; ++i) {
+    x.push_back(rng.point(half_width));
+    v.push_back(rng.point(speed));
+  }
+}
+
 TEST(SphFluid, ThreadsGiveBitIdenticalAccelerations) {
   test::Random rng(3);
   std::vector<Vec2> x, v;
-  for (int i = 0; i < 900; ++i) {
-    x.push_back(rng.point(0.5));
-    v.push_back(rng.point(0.1));
-  }
+  scatter(rng, 900, 0.5, 0.1, x, v);
   const std::vector<double> m(x.size(), 1.3);
   const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
   SphFluid one(parameters(), walls, 1), two(parameters(), walls, 2), three(parameters(), walls, 3);
@@ -151,10 +157,7 @@ TEST(SphFluid, NeighbourListsFollowSmallMovesAndRebuildAfterLongOnes) {
   test::Random rng(11);
   const double h = parameters().smoothing_radius_m, half_skin = 0.5 * SphFluid::kListSkin * h;
   std::vector<Vec2> x, v;
-  for (int i = 0; i < 400; ++i) {
-    x.push_back(rng.point(0.45));
-    v.push_back(rng.point(0.2));
-  }
+  scatter(rng, 400, 0.45, 0.2, x, v);
   const std::vector<double> m(x.size(), 1.1);
   const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
   for (int threads : {1, 2}) {
