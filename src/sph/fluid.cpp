@@ -181,7 +181,7 @@ bool SphFluid::rebuilding() const {
 //      when rebuilding (which also fills the part's Verlet lists), from the lists otherwise;
 //   6. accelerations of the part's particles (eqs. 5.6, 5.8).
 void SphFluid::evaluate(const Inputs& in, bool accelerations) {
-  prepare(in.x->size());
+  prepare(in.m.size());
   using Phase = WorkerPool::Phase;
   using Gate = WorkerPool::Gate;
   const std::array<Phase, 6> phases{
@@ -257,18 +257,20 @@ void SphFluid::load_and_check(const Inputs& in, int part_index) {
   const auto [begin, end] = part_range(load_split_, part_index);
   using Clock = std::chrono::steady_clock;
   const auto start = timing_ ? Clock::now() : Clock::time_point{};
-  if (in.hooks != nullptr && in.hooks->load) in.hooks->load(begin, end);
   Part& part = parts_[static_cast<std::size_t>(part_index)];
-  const std::vector<Vec2>& x = *in.x;
-  const std::vector<Vec2>& v = *in.v;
-  const std::vector<double>& m = *in.m;
+  if (in.x == nullptr) {
+    in.hooks->load(begin, end, all_x_.data(), all_v_.data());
+  } else {
+    std::copy(in.x->begin() + static_cast<std::ptrdiff_t>(begin), in.x->begin() + static_cast<std::ptrdiff_t>(end),
+              all_x_.begin() + static_cast<std::ptrdiff_t>(begin));
+    std::copy(in.v->begin() + static_cast<std::ptrdiff_t>(begin), in.v->begin() + static_cast<std::ptrdiff_t>(end),
+              all_v_.begin() + static_cast<std::ptrdiff_t>(begin));
+  }
   const double half_skin = 0.5 * (reach_ - kernels_.h()), limit2 = half_skin * half_skin;
   bool moved = false;
   for (std::size_t i = begin; i < end; ++i) {
-    all_x_[i] = x[i];
-    all_v_[i] = v[i];
-    all_m_[i] = m[i];
-    moved |= !(norm_squared(x[i] - reference_x_[i]) < limit2);  // NaN counts as moved
+    all_m_[i] = in.m[i];
+    moved |= !(norm_squared(all_x_[i] - reference_x_[i]) < limit2);  // NaN counts as moved
   }
   part.moved = moved;
   if (!force_rebuild_) write_twins(part);  // a rebuild writes them again from new tables
@@ -439,14 +441,31 @@ void SphFluid::acceleration_range(const Inputs& in, int part_index) {
   if (timed) part.work_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+
+void require_same_sizes(std::size_t x, std::size_t v, std::size_t m) {
+  if (x != v || x != m) throw std::invalid_argument("SphFluid: positions, velocities and masses differ in size");
+}
+
+}  // namespace
+
 void SphFluid::compute_density(const std::vector<Vec2>& x, const std::vector<Vec2>& v, const std::vector<double>& m) {
-  evaluate({&x, &v, &m, nullptr, nullptr}, false);
+  require_same_sizes(x.size(), v.size(), m.size());
+  evaluate({&x, &v, m, nullptr, nullptr}, false);
 }
 
 void SphFluid::compute_accelerations(const std::vector<Vec2>& x, const std::vector<Vec2>& v,
                                      const std::vector<double>& m, std::vector<Vec2>& a, const EvaluationHooks& hooks) {
+  require_same_sizes(x.size(), v.size(), m.size());
+  if (hooks.load) throw std::invalid_argument("SphFluid: a load hook needs the overload without x and v");
   a.resize(x.size());
-  evaluate({&x, &v, &m, &a, &hooks}, true);
+  evaluate({&x, &v, m, &a, &hooks}, true);
+}
+
+void SphFluid::compute_accelerations(std::span<const double> m, std::vector<Vec2>& a, const EvaluationHooks& hooks) {
+  if (!hooks.load) throw std::invalid_argument("SphFluid: this overload needs a load hook");
+  a.resize(m.size());
+  evaluate({nullptr, nullptr, m, &a, &hooks}, true);
 }
 
 }  // namespace jellysim::sph

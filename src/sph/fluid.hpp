@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace jellysim::sph {
@@ -30,8 +31,11 @@ void validate(const SphParameters& p);
 /// callback must not throw and may touch only its own range of particles (or, for `side`, data no
 /// other callback touches).
 struct EvaluationHooks {
-  /// Fills x, v, m on [begin, end) before they are read (called by the thread owning the range).
-  std::function<void(std::size_t begin, std::size_t end)> load;
+  /// Writes the positions (m) and velocities (m/s) of particles [begin, end) into x[i] and v[i]
+  /// (arrays indexed by particle, owned by the fluid) before they are read; called by the thread
+  /// owning the range. Writing straight into the fluid's arrays spares a copy through caller-side
+  /// vectors (and the cache lines that copy would share between cores).
+  std::function<void(std::size_t begin, std::size_t end, Vec2* x, Vec2* v)> load;
   /// Called once the accelerations on [begin, end) are final.
   std::function<void(std::size_t begin, std::size_t end)> store;
   /// Independent work (e.g. the body's spring forces), run once per evaluation by the last thread,
@@ -71,10 +75,12 @@ class SphFluid {
   ///   a_i = −Σ_j m_j (p_i + p_j)/(2 ρ_i ρ_j) ∇W_spiky(x_i − x_j)          (eq. 5.6 / ρ_i)
   ///       + (μ/ρ_i) Σ_j (m_j/ρ_j) (v_j − v_i) ∇²W_visc(|x_i − x_j|)     (eq. 5.8, μ = ν ρ0)
   /// Each pair term times m_i is antisymmetric in i, j, so particle pairs conserve momentum.
-  /// With hooks.load, x, v and m must already have their final size and are filled range by range
-  /// inside the parallel region.
+  /// hooks.load must be empty here (see the overload below); hooks.store and hooks.side may be set.
   void compute_accelerations(const std::vector<Vec2>& x, const std::vector<Vec2>& v, const std::vector<double>& m,
                              std::vector<Vec2>& a, const EvaluationHooks& hooks = {});
+  /// The same for m.size() particles whose positions and velocities hooks.load (required) writes
+  /// inside the parallel region, each thread for its own range.
+  void compute_accelerations(std::span<const double> m, std::vector<Vec2>& a, const EvaluationHooks& hooks);
 
   /// Densities of the real particles from the last evaluation (kg/m²).
   const std::vector<double>& density() const { return rho_; }
@@ -118,9 +124,9 @@ class SphFluid {
     NeighbourList list;
   };
   struct Inputs {
-    const std::vector<Vec2>* x;
+    const std::vector<Vec2>* x;  ///< null when hooks->load writes the positions and velocities
     const std::vector<Vec2>* v;
-    const std::vector<double>* m;
+    std::span<const double> m;
     std::vector<Vec2>* a;
     const EvaluationHooks* hooks;
   };

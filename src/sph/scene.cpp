@@ -119,9 +119,6 @@ void CoupledSystem::evaluate(double t, const ode::Vector& y, const StageSum* sum
   const std::size_t n = scene_.position.size(), nf = scene_.fluid_count;
   if (y.size() != dimension()) throw std::invalid_argument("CoupledSystem: state size does not match the scene");
   dydt.resize(y.size());
-  xf_.resize(nf);
-  vf_.resize(nf);
-  mf_.resize(nf);
   af_.resize(nf);
   if (nf == 0) {
     rest_derivative(t, y, dydt);
@@ -137,22 +134,20 @@ void CoupledSystem::evaluate(double t, const ode::Vector& y, const StageSum* sum
     const StageSum* sum;
   } const c{this, &y, &dydt, n + scene_.body.points.size(), nf, t, sum};
   EvaluationHooks hooks;
-  hooks.load = [p = &c](std::size_t b, std::size_t e) {
-    const CoupledSystem& s = *p->self;
+  hooks.load = [p = &c](std::size_t b, std::size_t e, Vec2* x, Vec2* v) {
     if (p->sum != nullptr) {  // this part's positions and velocities of the stage state
       p->sum->form(b, e);
       p->sum->form(p->half + b, p->half + e);
     }
     for (std::size_t i = b; i < e; ++i) {
-      s.xf_[i] = get(*p->y, i);
-      s.vf_[i] = get(*p->y, p->half + i);
-      s.mf_[i] = s.scene_.mass[i];
+      x[i] = get(*p->y, i);
+      v[i] = get(*p->y, p->half + i);
     }
   };
   hooks.store = [p = &c](std::size_t b, std::size_t e) {
     const CoupledSystem& s = *p->self;
     for (std::size_t i = b; i < e; ++i) {
-      set(*p->dydt, i, s.vf_[i]);
+      set(*p->dydt, i, get(*p->y, p->half + i));
       set(*p->dydt, p->half + i, s.af_[i] + s.scene_.particle_gravity);
     }
   };
@@ -163,7 +158,7 @@ void CoupledSystem::evaluate(double t, const ode::Vector& y, const StageSum* sum
     }
     p->self->rest_derivative(p->t, *p->y, *p->dydt);
   };
-  fluid_->compute_accelerations(xf_, vf_, mf_, af_, hooks);
+  fluid_->compute_accelerations(std::span<const double>(scene_.mass.data(), nf), af_, hooks);
 }
 
 // The part of y' that is not SPH: solid point masses (gravity only) and the body.

@@ -67,8 +67,7 @@ class CoupledSystem final : public ode::OdeSystem {
   Scene& scene_;
   std::unique_ptr<SphFluid> fluid_;
   mutable elastic::Body body_;  ///< working copy (muscles change its rest lengths)
-  mutable std::vector<Vec2> xf_, vf_, af_, xb_, vb_, fb_;
-  mutable std::vector<double> mf_;
+  mutable std::vector<Vec2> af_, xb_, vb_, fb_;
 };
 
 /// Particles released at a fixed interval from a fixed point (Figure 8.4).
