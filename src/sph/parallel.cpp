@@ -31,12 +31,26 @@ inline void cpu_relax() {
 
 }  // namespace
 
+namespace {
+
+/// The median of `times` (reordered; the upper one of the middle two for an even count).
+double median(std::vector<double>& times) {
+  const auto middle = times.begin() + static_cast<std::ptrdiff_t>(times.size() / 2);
+  std::nth_element(times.begin(), middle, times.end());
+  return *middle;
+}
+
+}  // namespace
+
 void PathChooser::record(double seconds) {
-  if (in_trial()) (position_ % 2 == 0 ? parallel_time_ : serial_time_) += seconds;
+  if (in_trial()) (position_ % 2 == 0 ? parallel_times_ : serial_times_).push_back(seconds);
   if (++position_ < period_) return;
-  parallel_wins_ = parallel_time_ <= serial_time_;
+  if (!parallel_times_.empty() && !serial_times_.empty()) {
+    parallel_wins_ = median(parallel_times_) <= median(serial_times_);
+  }
   position_ = 0;
-  parallel_time_ = serial_time_ = 0.0;
+  parallel_times_.clear();
+  serial_times_.clear();
 }
 
 int resolve_threads(int threads) {

@@ -75,11 +75,15 @@ class WorkerPool {
 /// and then (the results are the same either way). On a machine busy with other work, a thread
 /// waiting at a barrier for a descheduled partner makes the parallel path slower than one thread;
 /// then the serial path wins until the next trial. The parallel path runs first; the last
-/// 2 × `trials` jobs of every `period` alternate between the paths, and the faster total decides
-/// the next period.
+/// 2 × `trials` jobs of every `period` alternate between the paths, and the path with the shorter
+/// median job decides the next period (a median, not a total: on a shared machine one job stalled by
+/// a descheduled thread would otherwise hand a whole period to the slower path).
 class PathChooser {
  public:
-  explicit PathChooser(int period = 512, int trials = 8) : period_(period), trials_(trials) {}
+  explicit PathChooser(int period = 512, int trials = 8) : period_(period), trials_(trials) {
+    parallel_times_.reserve(static_cast<std::size_t>(trials));
+    serial_times_.reserve(static_cast<std::size_t>(trials));
+  }
   /// Whether the next job should run in parallel.
   bool parallel() const { return in_trial() ? position_ % 2 == 0 : parallel_wins_; }
   /// Records the wall time (s) of the job just run on the path parallel() chose.
@@ -90,7 +94,7 @@ class PathChooser {
 
   int period_, trials_, position_ = 0;
   bool parallel_wins_ = true;
-  double parallel_time_ = 0.0, serial_time_ = 0.0;
+  std::vector<double> parallel_times_, serial_times_;  ///< the current trial's jobs
 };
 
 }  // namespace jellysim::sph

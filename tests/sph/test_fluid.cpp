@@ -397,5 +397,20 @@ TEST(SphPathChooser, FollowsTheFasterPathAndKeepsTrying) {
   EXPECT_EQ(run_period(chooser, 64, 1.0, 2.0), 60);
 }
 
+TEST(SphPathChooser, OneStalledJobDoesNotDecideTheTrial) {
+  PathChooser chooser(16, 4);
+  int parallel = 0, trial_job = 0;
+  for (int k = 0; k < 16; ++k) {
+    const bool p = chooser.parallel();
+    parallel += p ? 1 : 0;
+    // Parallel jobs take 1 s and serial ones 2 s, but the first parallel trial job stalls for 100 s:
+    // a total would pick the serial path, the median keeps the parallel one.
+    const bool stalled = p && k >= 8 && trial_job++ == 0;
+    chooser.record(stalled ? 100.0 : (p ? 1.0 : 2.0));
+  }
+  EXPECT_EQ(parallel, 8 + 4);
+  EXPECT_EQ(run_period(chooser, 16, 1.0, 2.0), 8 + 4);  // still parallel outside the trial
+}
+
 }  // namespace
 }  // namespace jellysim::sph
