@@ -132,6 +132,42 @@ TEST(SphFluid, ThreadsGiveBitIdenticalAccelerations) {
   }
 }
 
+// The load hook writes each thread's particles straight into the fluid: the same accelerations,
+// bit for bit, as the vectors given to the plain overload, with one and two threads; each range is
+// loaded once, and each stored range is one that was loaded. Misuse of the two overloads throws.
+TEST(SphFluid, LoadHookGivesTheSameAccelerationsAsVectors) {
+  test::Random rng(8);
+  std::vector<Vec2> x, v;
+  scatter(rng, 500, 0.45, 0.1, x, v);
+  const std::vector<double> m(x.size(), 1.3);
+  const std::vector<Wall> walls = box_walls({-0.5, -0.5}, {0.5, 0.5});
+  for (int threads : {1, 2}) {
+    SphFluid plain(parameters(), walls, threads), hooked(parameters(), walls, threads);
+    std::vector<Vec2> a_plain, a_hooked;
+    plain.compute_accelerations(x, v, m, a_plain);
+    std::vector<int> loads(x.size(), 0), stores(x.size(), 0);  // each index is touched by one thread
+    EvaluationHooks hooks;
+    hooks.load = [&](std::size_t b, std::size_t e, Vec2* xs, Vec2* vs) {
+      for (std::size_t i = b; i < e; ++i) {
+        xs[i] = x[i];
+        vs[i] = v[i];
+        ++loads[i];
+      }
+    };
+    hooks.store = [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) stores[i] += loads[i];
+    };
+    hooked.compute_accelerations(m, a_hooked, hooks);
+    EXPECT_EQ(a_plain, a_hooked) << threads;
+    EXPECT_EQ(plain.density(), hooked.density()) << threads;
+    EXPECT_EQ(std::count(loads.begin(), loads.end(), 1), static_cast<std::ptrdiff_t>(x.size())) << threads;
+    EXPECT_EQ(std::count(stores.begin(), stores.end(), 1), static_cast<std::ptrdiff_t>(x.size())) << threads;
+    EXPECT_THROW(plain.compute_accelerations(x, v, m, a_plain, hooks), std::invalid_argument);
+    EXPECT_THROW(hooked.compute_accelerations(m, a_hooked, EvaluationHooks{}), std::invalid_argument);
+    EXPECT_THROW(plain.compute_accelerations(x, std::vector<Vec2>(3), m, a_plain), std::invalid_argument);
+  }
+}
+
 /// Accelerations of a fresh fluid object (neighbours from a new grid search) at x, v, m.
 std::vector<Vec2> fresh_accelerations(const std::vector<Vec2>& x, const std::vector<Vec2>& v,
                                       const std::vector<double>& m, const std::vector<Wall>& walls) {
