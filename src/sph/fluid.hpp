@@ -38,7 +38,7 @@ struct EvaluationHooks {
   std::function<void(std::size_t begin, std::size_t end, Vec2* x, Vec2* v)> load;
   /// Called once the accelerations on [begin, end) are final.
   std::function<void(std::size_t begin, std::size_t end)> store;
-  /// Independent work (e.g. the body's spring forces), run once per evaluation by the last thread,
+  /// Independent work (e.g. the body's spring forces), run once per evaluation by the first thread,
   /// in the load phase after its own range.
   std::function<void()> side;
 };

@@ -29,10 +29,6 @@ inline void cpu_relax() {
 #endif
 }
 
-}  // namespace
-
-namespace {
-
 /// The median of `times` (reordered; the upper one of the middle two for an even count).
 double median(std::vector<double>& times) {
   const auto middle = times.begin() + static_cast<std::ptrdiff_t>(times.size() / 2);
