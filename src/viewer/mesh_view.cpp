@@ -85,6 +85,26 @@ Mat4 look_at(Vec3 eye, Vec3 target, Vec3 up) {
   return m;
 }
 
+/// The distance from the bounds' centre, along `direction` (towards the eye), at which all eight
+/// corners of the bounds fall inside the view (vertical half-angle tangent `tan_half_v`, width /
+/// height `aspect`, up = +y), with a 10 % margin: a corner at x, y across the view and z towards
+/// the eye needs (distance − z) tan ≥ |x| horizontally and |y| vertically.
+double framing_distance(const geometry::Bounds& b, Vec3 direction, double tan_half_v, double aspect) {
+  const Vec3 forward = -direction;
+  const Vec3 side = geometry::normalized(geometry::cross(forward, {0.0, 1.0, 0.0}));
+  const Vec3 up = geometry::cross(side, forward);
+  const double tan_half_h = tan_half_v * aspect;
+  double distance = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner{(k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z};
+    const Vec3 c = corner - b.centre();
+    const double towards_eye = geometry::dot(c, direction);
+    distance = std::max({distance, towards_eye + 1.1 * std::abs(geometry::dot(c, side)) / tan_half_h,
+                         towards_eye + 1.1 * std::abs(geometry::dot(c, up)) / tan_half_v});
+  }
+  return distance;
+}
+
 geometry::Bounds common_bounds(const std::vector<const geometry::Mesh*>& meshes) {
   geometry::Bounds all{};
   bool first = true;
@@ -167,11 +187,13 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const geometry::Bounds bounds = common_bounds(meshes);
   const double extent = std::max(geometry::norm(bounds.max - bounds.min), 1e-3);
-  const double fov = 40.0 * std::numbers::pi / 180.0;
-  const double distance = 0.6 * extent / std::tan(fov / 2.0) / std::max(camera.zoom, 0.05);
-  const Vec3 eye = bounds.centre() + distance * orbit_direction(camera);
-  const Mat4 vp = multiply(perspective(fov, static_cast<double>(target_.width()) / target_.height(),
-                                       distance * 0.01, distance * 10.0),
+  const double fov = 40.0 * std::numbers::pi / 180.0;  // vertical
+  const double aspect = static_cast<double>(target_.width()) / target_.height();
+  const Vec3 direction = orbit_direction(camera);
+  const double distance = std::max(framing_distance(bounds, direction, std::tan(fov / 2.0), aspect), 0.5 * extent) /
+                          std::max(camera.zoom, 0.05);
+  const Vec3 eye = bounds.centre() + distance * direction;
+  const Mat4 vp = multiply(perspective(fov, aspect, distance * 0.01, distance * 10.0),
                            look_at(eye, bounds.centre(), {0.0, 1.0, 0.0}));
   glUseProgram(program_);
   glUniformMatrix4fv(u_view_projection_, 1, GL_FALSE, vp.data());

@@ -151,6 +151,7 @@ TEST(Viewer, DraggingAnObstacleMovesIt) {
 // The 3D panel draws obstacles as opaque prisms (docs/viewer.md): two jellyfish 0.2 m apart frame a
 // view in which a 4 cm box between them must appear. The same scene without the box, paused at
 // t = 0 so that both pictures show the same state, differs from it only where the box is drawn.
+// The framing keeps both jellyfish whole in the tall panel: its side columns show only water.
 TEST(Viewer, ObstaclesAppearAsPrismsInThe3DPanel) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_prisms");
@@ -169,22 +170,30 @@ TEST(Viewer, ObstaclesAppearAsPrismsInThe3DPanel) {
   const auto without = jellysim::render::read_png(dir / "none.png");
   ASSERT_EQ(with_box.width, 1280);
   ASSERT_EQ(without.width, 1280);
+  const auto difference = [](const jellysim::render::Rgb& a, const jellysim::render::Rgb& b) {
+    return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+  };
   // Pixels of the 3D panel (x in [475, 950)) that differ (the dark box against the dark water by
   // 40–60 in the sum of channels; identical renders by 0), inside the middle of the panel
   // (between the two jellyfish, where the box is) and outside it.
   int inside = 0, outside = 0, inside_total = 0;
   for (int y = 0; y < 720; ++y) {
     for (int x = 475; x < 950; ++x) {
-      const auto a = with_box.at(x, y), b = without.at(x, y);
-      const int d = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
-      const bool middle = x >= 620 && x < 800 && y >= 320 && y < 460;
+      const bool middle = x >= 650 && x < 770 && y >= 335 && y < 425;
       inside_total += middle ? 1 : 0;
-      if (d > 20) ++(middle ? inside : outside);
+      if (difference(with_box.at(x, y), without.at(x, y)) > 20) ++(middle ? inside : outside);
     }
   }
-  EXPECT_GT(inside, inside_total * 2 / 3) << "the box's prism should cover most of the middle of the panel";
-  EXPECT_GT(inside + outside, 10000);
+  EXPECT_GT(inside, inside_total * 4 / 5) << "the box's prism should cover the middle of the panel";
+  EXPECT_GT(inside + outside, 12000);
   EXPECT_LT(outside, inside) << "away from the box the two pictures should mostly agree";
+  // Nothing but water in the panel's outer 10 px columns: no jellyfish is cut off at the sides.
+  const auto water = without.at(480, 5);
+  int cut = 0;
+  for (int y = 0; y < 720; ++y) {
+    for (int x : {476, 478, 480, 482, 484, 940, 942, 944, 946, 948}) cut += difference(without.at(x, y), water) > 12 ? 1 : 0;
+  }
+  EXPECT_EQ(cut, 0);
 }
 
 TEST(Viewer, BadScriptIsAnInputErrorNamingTheLine) {
