@@ -4,6 +4,10 @@
 //  - BM_SphAccelerationsLarge/threads: the same for 10,000 particles (shows the O(n) cell grid).
 //  - BM_MosquitoLarva/threads: simulating 1 s of the mosquito-larva scene (κ_p = 40, Dormand–Prince,
 //    tolerances 1e-4 + 1e-3 |y|) including collisions.
+//  - BM_SphLarvaDerivative/threads, BM_SphLarvaRun/threads: one y' and 1 s of a developed larva state.
+//  - BM_SphLarvaDerivativeOneVsTwo: one thread against two on that y', alternating in short blocks.
+//  - BM_SphSideBySideFluids: one fluid alone against the same with a second thread evaluating its own
+//    fluid next to it (the machine's ceiling for two threads).
 #include "sph/bodies.hpp"
 #include "sph/fluid.hpp"
 #include "sph/initial_conditions.hpp"
@@ -11,8 +15,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 namespace {
 
@@ -121,6 +129,113 @@ void BM_SphLarvaDerivative(benchmark::State& state) {
   state.counters["evals_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SphLarvaDerivative)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+/// The median of `values` (reordered; the upper middle one for an even count).
+double median(std::vector<double>& values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+/// One thread against two on the same right-hand side, alternating in blocks of 16 evaluations so
+/// that the machine's changing speed (a shared virtual machine's can drift by 2× within minutes, and
+/// its host takes cores away for milliseconds) affects both alike. Reports the medians over the block
+/// pairs of each block's time per evaluation and of the pair's ratio. Each block starts with an
+/// untimed evaluation: in a run the evaluations follow each other within microseconds, and the
+/// helper thread never falls asleep as it does here during the other block.
+void BM_SphLarvaDerivativeOneVsTwo(benchmark::State& state) {
+  sph::Scene one = developed_scene(1), two = developed_scene(2);
+  const sph::CoupledSystem system_one(one), system_two(two);
+  const ode::Vector y = system_one.pack_state();
+  ode::Vector dydt(y.size());
+  constexpr int kBlock = 16;
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> one_us, two_us, ratio;
+  for (auto _ : state) {
+    double us[2];
+    for (int k = 0; k < 2; ++k) {
+      const sph::CoupledSystem& system = k == 0 ? system_one : system_two;
+      system.derivative(1.0, y, dydt);  // not timed (see above)
+      const auto start = Clock::now();
+      for (int e = 0; e < kBlock; ++e) system.derivative(1.0, y, dydt);
+      us[k] = std::chrono::duration<double, std::micro>(Clock::now() - start).count() / kBlock;
+      benchmark::DoNotOptimize(dydt.data());
+    }
+    one_us.push_back(us[0]);
+    two_us.push_back(us[1]);
+    ratio.push_back(us[0] / us[1]);
+  }
+  state.counters["one_thread_us"] = median(one_us);
+  state.counters["two_threads_us"] = median(two_us);
+  state.counters["ratio"] = median(ratio);
+}
+BENCHMARK(BM_SphLarvaDerivativeOneVsTwo)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The machine's own ceiling for two threads: one fluid evaluated alone, and while a second thread
+/// evaluates another fluid on its own copy of the data (nothing shared). Alternates in blocks of 16
+/// evaluations and reports the medians over the block pairs; a slowdown near 1 means both cores can
+/// run this work at full speed, so whatever two threads of one evaluation lose comes from what they
+/// share (docs/sph.md, "Where the second core goes").
+void BM_SphSideBySideFluids(benchmark::State& state) {
+  const std::vector<sph::Wall> walls = sph::box_walls({0.0, 0.0}, {1.0, 1.0});
+  std::vector<Vec2> x = sph::triangular_lattice({0.0, 0.0}, {1.0, 1.0}, 0.043), v;
+  sph::thermalise(x, v, 0.1 * 0.043, 1.0, 7);
+  const std::vector<double> m(x.size(), 3.0);
+  sph::SphFluid measured(larva_fluid(), walls, 1), other(larva_fluid(), walls, 1);
+  const std::vector<Vec2> x_other = x, v_other = v;
+  const std::vector<double> m_other = m;
+  std::vector<Vec2> a, a_other;
+  // 0: idle (sleeps on the futex), 1: evaluate until told to stop, 2: quit. `busy` acknowledges.
+  std::atomic<int> command{0};
+  std::atomic<bool> busy{false};
+  std::atomic<std::int64_t> partner_evaluations{0};
+  std::thread partner([&] {
+    while (true) {
+      command.wait(0);
+      if (command.load() == 2) return;
+      busy.store(true);
+      while (command.load() == 1) {
+        other.compute_accelerations(x_other, v_other, m_other, a_other);
+        partner_evaluations.fetch_add(1, std::memory_order_relaxed);
+      }
+      busy.store(false);
+    }
+  });
+  constexpr int kBlock = 16;
+  using Clock = std::chrono::steady_clock;
+  const auto time_block = [&] {
+    measured.compute_accelerations(x, v, m, a);  // not timed
+    const auto start = Clock::now();
+    for (int e = 0; e < kBlock; ++e) measured.compute_accelerations(x, v, m, a);
+    benchmark::DoNotOptimize(a.data());
+    return std::chrono::duration<double, std::micro>(Clock::now() - start).count() / kBlock;
+  };
+  std::vector<double> alone_us, beside_us, slowdown, partner_us;
+  for (auto _ : state) {
+    const double alone = time_block();
+    command.store(1);
+    command.notify_one();
+    while (!busy.load()) std::this_thread::yield();
+    const std::int64_t before = partner_evaluations.load();
+    const double beside = time_block();
+    const auto partner_done = static_cast<double>(partner_evaluations.load() - before);
+    command.store(0);
+    while (busy.load()) std::this_thread::yield();
+    alone_us.push_back(alone);
+    beside_us.push_back(beside);
+    slowdown.push_back(beside / alone);
+    // The partner's time per evaluation meanwhile (the block's evaluations, untimed one included).
+    if (partner_done > 0) partner_us.push_back(beside * (kBlock + 1) / partner_done);
+  }
+  command.store(2);
+  command.notify_one();
+  partner.join();
+  state.counters["alone_us"] = median(alone_us);
+  state.counters["side_by_side_us"] = median(beside_us);
+  state.counters["slowdown"] = median(slowdown);
+  if (!partner_us.empty()) state.counters["partner_us"] = median(partner_us);
+}
+BENCHMARK(BM_SphSideBySideFluids)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// 1 s of the scene with Dormand–Prince and the collision pass, continued from the developed state.
 void BM_SphLarvaRun(benchmark::State& state) {
