@@ -140,9 +140,10 @@ double median(std::vector<double>& values) {
 /// One thread against two on the same right-hand side, alternating in blocks of 16 evaluations so
 /// that the machine's changing speed (a shared virtual machine's can drift by 2× within minutes, and
 /// its host takes cores away for milliseconds) affects both alike. Reports the medians over the block
-/// pairs of each block's time per evaluation and of the pair's ratio. Each block starts with an
-/// untimed evaluation: in a run the evaluations follow each other within microseconds, and the
-/// helper thread never falls asleep as it does here during the other block.
+/// pairs of each block's time per evaluation and of the pair's ratio, and the share of the two-thread
+/// system's evaluations that ran on both threads. Each block starts with an untimed evaluation: in a
+/// run the evaluations follow each other within microseconds, and the helper thread never falls
+/// asleep as it does here during the other block.
 void BM_SphLarvaDerivativeOneVsTwo(benchmark::State& state) {
   sph::Scene one = developed_scene(1), two = developed_scene(2);
   const sph::CoupledSystem system_one(one), system_two(two);
@@ -168,6 +169,11 @@ void BM_SphLarvaDerivativeOneVsTwo(benchmark::State& state) {
   state.counters["one_thread_us"] = median(one_us);
   state.counters["two_threads_us"] = median(two_us);
   state.counters["ratio"] = median(ratio);
+  // The share of the two-thread system's evaluations that ran on both threads (the PathChooser
+  // runs a period serially when its trial finds the serial path no slower).
+  const sph::SphFluid& fluid = system_two.fluid();
+  const auto evaluations = static_cast<double>(std::max<std::int64_t>(1, fluid.evaluations()));
+  state.counters["parallel_share"] = static_cast<double>(fluid.parallel_evaluations()) / evaluations;
 }
 BENCHMARK(BM_SphLarvaDerivativeOneVsTwo)->Unit(benchmark::kMillisecond)->UseRealTime();
 
