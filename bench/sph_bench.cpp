@@ -8,6 +8,7 @@
 //  - BM_SphLarvaDerivativeOneVsTwo: one thread against two on that y', alternating in short blocks.
 //  - BM_SphSideBySideFluids: one fluid alone against the same with a second thread evaluating its own
 //    fluid next to it (the machine's ceiling for two threads).
+#include "math/median.hpp"
 #include "sph/bodies.hpp"
 #include "sph/fluid.hpp"
 #include "sph/initial_conditions.hpp"
@@ -129,13 +130,6 @@ void BM_SphLarvaDerivative(benchmark::State& state) {
   state.counters["evals_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SphLarvaDerivative)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
-
-/// The median of `values` (reordered; the upper middle one for an even count).
-double median(std::vector<double>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 /// One thread against two on the same right-hand side, alternating in blocks of 16 evaluations so
 /// that the machine's changing speed (a shared virtual machine's can drift by 2× within minutes, and

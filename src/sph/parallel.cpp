@@ -1,5 +1,7 @@
 #include "sph/parallel.hpp"
 
+#include "math/median.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -27,13 +29,6 @@ inline void cpu_relax() {
 #else
   std::this_thread::yield();
 #endif
-}
-
-/// The median of `times` (reordered; the upper one of the middle two for an even count).
-double median(std::vector<double>& times) {
-  const auto middle = times.begin() + static_cast<std::ptrdiff_t>(times.size() / 2);
-  std::nth_element(times.begin(), middle, times.end());
-  return *middle;
 }
 
 }  // namespace
