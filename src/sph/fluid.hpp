@@ -9,6 +9,7 @@
 #include "sph/parallel.hpp"
 #include "sph/walls.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -16,6 +17,13 @@
 #include <vector>
 
 namespace jellysim::sph {
+
+/// Makes `v` hold at least n entries (growing geometrically: used as a buffer whose first entries
+/// count, so that loops write without push_back's capacity test).
+template <class T>
+void grow_to(std::vector<T>& v, std::size_t n) {
+  if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
+}
 
 struct SphParameters {
   double smoothing_radius_m = 0.05;  ///< h
@@ -96,10 +104,17 @@ class SphFluid {
   static constexpr double kListSkin = 0.25;
 
  private:
-  /// Neighbours (r < h, self excluded) found by the density pass, reused by the force pass.
+  /// Neighbours (r < h, self excluded) found by the density pass, reused by the force pass: the
+  /// first `size` entries (the arrays only grow, so the density loop writes without push_back).
   struct NeighbourList {
     std::vector<std::uint32_t> index;
     std::vector<double> distance;
+    std::size_t size = 0;
+    /// Room for `more` entries after the first `size`.
+    void make_room(std::size_t more) {
+      grow_to(index, size + more);
+      distance.resize(index.size());
+    }
   };
   /// A mirrored twin: its source reflected across wall `a`, then across wall `b` when b >= 0
   /// (a corner); indices into walls_.
@@ -115,7 +130,8 @@ class SphFluid {
     bool moved = false;             ///< a particle moved skin/2 or more since the rebuild
     Bounds bounds;
     GridLayout layout;
-    std::vector<std::uint32_t> candidates;  ///< Verlet lists of its particles, back to back
+    std::vector<std::uint32_t> candidates;  ///< Verlet lists of its particles, back to back (the
+    std::size_t candidate_count = 0;        ///< first candidate_count entries; the rest is scratch)
     double work_seconds = 0.0;              ///< its density and force phases since the last rebuild
     std::uint64_t work_cost = 0;            ///< the work units (see balanced_split) they did
     double load_seconds = 0.0;              ///< its load phases since the last rebuild, side work apart
@@ -142,6 +158,11 @@ class SphFluid {
   void gather_and_count(int part);
   void place(int part);
   void density_range(int part);
+  /// Density of real particle i (eq. 5.5: itself, then its candidates in order) and its pressure;
+  /// the candidates within h go into `list` (which must have room for `count` more).
+  void density_over(std::size_t i, const std::uint32_t* candidate, std::uint32_t count, NeighbourList& list);
+  /// Appends particle i's Verlet list (the grid search) to the part's candidates.
+  void find_candidates(std::size_t i, Part& part) const;
   void acceleration_range(const Inputs& in, int part);
 
   /// Writes the part's twins after the real particles (position, velocity, mass, source, active).
@@ -188,6 +209,7 @@ class SphFluid {
   std::vector<std::uint8_t> active_;   ///< 0 for a twin whose source is h or more from its walls
   std::vector<Vec2> reference_x_;      ///< positions at the last rebuild
   std::vector<double> rho_, p_;        ///< per real particle
+  std::vector<double> m_over_rho_;     ///< m_i / ρ_i per real particle (a twin has its source's)
   std::vector<Part> parts_;            ///< one per thread
   /// Which real particles each part owns in the density and force phases: split_[p] ..
   /// split_[p + 1]. A part's Verlet lists belong to these particles, so the split changes only at a

@@ -78,6 +78,14 @@ class NeighbourGrid {
   /// cell size of p), in a fixed order.
   template <class F>
   void for_each_candidate(Vec2 p, F&& f) const {
+    for_each_candidate_row(p, [&](const std::uint32_t* first, const std::uint32_t* last) {
+      for (const std::uint32_t* k = first; k < last; ++k) f(static_cast<std::size_t>(*k));
+    });
+  }
+  /// The same points, a row of cells at a time: f(first, last) for each of the up to three rows
+  /// (their point indices are contiguous in the sorted order).
+  template <class F>
+  void for_each_candidate_row(Vec2 p, F&& f) const {
     if (layout_.nx == 0) return;
     const int nx = layout_.nx, ny = layout_.ny;
     const int cx = layout_.coordinate(p.x, layout_.min.x, nx), cy = layout_.coordinate(p.y, layout_.min.y, ny);
@@ -88,7 +96,7 @@ class NeighbourGrid {
       // Cells x0..x1 of one row are contiguous in the sorted order.
       const std::uint32_t begin = cell_start_[row + static_cast<std::size_t>(x0)];
       const std::uint32_t end = cell_start_[row + static_cast<std::size_t>(x1) + 1];
-      for (std::uint32_t k = begin; k < end; ++k) f(static_cast<std::size_t>(sorted_[k]));
+      f(sorted_.data() + begin, sorted_.data() + end);
     }
   }
 
