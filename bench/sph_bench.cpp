@@ -8,6 +8,8 @@
 //  - BM_SphLarvaDerivativeOneVsTwo: one thread against two on that y', alternating in short blocks.
 //  - BM_SphSideBySideFluids: one fluid alone against the same with a second thread evaluating its own
 //    fluid next to it (the machine's ceiling for two threads).
+//  - BM_PoolCeiling/job_us/phases: the best a two-thread WorkerPool can do here with jobs of a given
+//    length: perfectly divisible arithmetic on private data, one thread against two.
 #include "math/median.hpp"
 #include "sph/bodies.hpp"
 #include "sph/fluid.hpp"
@@ -236,6 +238,57 @@ void BM_SphSideBySideFluids(benchmark::State& state) {
   if (!partner_us.empty()) state.counters["partner_us"] = median(partner_us);
 }
 BENCHMARK(BM_SphSideBySideFluids)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The ceiling for two threads on jobs of a given length: a job is `phases` phases of arithmetic on
+/// private, cache-resident data, split evenly between the parts (nothing shared, no imbalance by
+/// design), about job_us µs on one thread. One thread (the pool's serial path) and two alternate in
+/// blocks of 16 jobs; the counters are medians over the block pairs. With jobs as short as the
+/// larva's y' (~40 µs), the ratio shows what the guest's jitter between its two virtual cores
+/// leaves of the ideal 2 (docs/sph.md, "Two cores").
+void BM_PoolCeiling(benchmark::State& state) {
+  const auto job_us = static_cast<double>(state.range(0));
+  const auto phases = static_cast<int>(state.range(1));
+  constexpr std::size_t kValues = 2048;  // 16 KiB per part: stays in L1
+  std::vector<std::vector<double>> data(2, std::vector<double>(kValues, 1.0));
+  int sweeps = 1;  // per part and phase, calibrated below
+  const auto work = [&](int part) {
+    std::vector<double>& d = data[static_cast<std::size_t>(part)];
+    for (int s = 0; s < sweeps; ++s) {
+      for (double& v : d) v = v * 0.999 + 0.001;
+    }
+    benchmark::DoNotOptimize(d.data());
+  };
+  using Clock = std::chrono::steady_clock;
+  sph::WorkerPool pool(2);
+  const std::vector<sph::WorkerPool::Phase> job(static_cast<std::size_t>(phases), sph::WorkerPool::Phase(work));
+  const auto time_jobs = [&](bool parallel, int count) {
+    pool.run_phases(job, parallel);  // not timed: wakes the helper
+    const auto start = Clock::now();
+    for (int k = 0; k < count; ++k) pool.run_phases(job, parallel);
+    return std::chrono::duration<double, std::micro>(Clock::now() - start).count() / count;
+  };
+  // Calibrate: sweeps such that one thread takes about job_us per job.
+  const double per_sweep = time_jobs(false, 64) / (2.0 * phases);
+  sweeps = std::max(1, static_cast<int>(std::lround(job_us / (2.0 * phases * per_sweep))));
+  constexpr int kBlock = 16;
+  std::vector<double> one_us, two_us, ratio;
+  for (auto _ : state) {
+    const double one = time_jobs(false, kBlock), two = time_jobs(true, kBlock);
+    one_us.push_back(one);
+    two_us.push_back(two);
+    ratio.push_back(one / two);
+  }
+  state.counters["one_thread_us"] = median(one_us);
+  state.counters["two_threads_us"] = median(two_us);
+  state.counters["ratio"] = median(ratio);
+}
+BENCHMARK(BM_PoolCeiling)
+    ->Args({40, 1})
+    ->Args({40, 3})
+    ->Args({400, 3})
+    ->Args({4000, 3})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// 1 s of the scene with Dormand–Prince and the collision pass, continued from the developed state.
 void BM_SphLarvaRun(benchmark::State& state) {
