@@ -1,9 +1,14 @@
-// Immersed-boundary jellyfish benchmarks (docs/jellyfish.md):
-//  - BM_Swim/<scene>/<scheme>: one contraction cycle (1/0.7 s) of the built-in jellyfish scene
-//    ("default": Fig. 8.21's 60 × 60 tank; "fine": scenes/jellyfish-fine.toml's 160 × 160 tank),
-//    explicit or semi-implicit coupling, no outputs. Counters: wall seconds per simulated second
-//    (wall_per_sim_s; < 0.1 means ten times faster than real time), steps and GMRES iterations.
-//    The explicit scheme runs at the largest step coupling-stability found stable for it.
+// Immersed-boundary jellyfish benchmarks (docs/jellyfish.md, docs/benchmarks.md):
+//  - BM_Swim/<scene>_<scheme>: one contraction cycle (1/0.7 s) of a jellyfish scene ("builtin": the
+//    resolved built-in scene, 96 × 128 cells, solved on its east half; "thesis": Fig. 8.21's 60 × 60
+//    tank, scenes/jellyfish-thesis.toml; "fine": scenes/jellyfish-fine.toml's 160 × 160 tank),
+//    explicit or semi-implicit coupling, no outputs. The explicit scheme runs at the largest step
+//    coupling-stability found stable for it.
+//  - BM_MarkerSpaceSolve/<cells>/<preconditioner>/<half>: one cycle of the fine scene's 40 cm tank
+//    at cells × cells (60, 160, 320), plain GMRES (0, the coupling before the marker-space solve) or
+//    the mobility preconditioner (1), on the whole tank (0) or its east half (1).
+// Counters: wall seconds per simulated second (wall_per_sim_s; < 0.1 means ten times faster than
+// real time), steps per simulated second and Krylov (GMRES) iterations per step.
 #include <benchmark/benchmark.h>
 
 #include "experiments/experiment.hpp"
@@ -13,24 +18,21 @@ namespace {
 
 using namespace jellysim;
 
-jellyfish::SwimSettings bench_scene(bool fine, bool semi_implicit) {
+/// The built-in scene, optionally with a scene file of the repository laid over it, for one cycle.
+io::Config one_cycle(const char* overlay) {
   io::Config c = experiments::default_config(experiments::find_experiment("jellyfish"));
-  if (fine) {
-    c.merge(io::Config::parse(experiments::embedded_text("scenes/jellyfish-fine.toml"), "scenes/jellyfish-fine.toml"));
-  }
+  if (overlay) c.merge(io::Config::parse(experiments::embedded_text(overlay), overlay));
   c.set("tank.tracers_per_side=0");
   c.set("duration=" + io::format_double(1.0 / 0.7));
   c.set("output.frame_interval=0.1");
-  c.set(std::string("coupling.scheme=") + (semi_implicit ? "semi-implicit" : "explicit"));
-  if (!semi_implicit) c.set("coupling.max_dt=0.0025");
-  return experiments::read_swim_settings(c);
+  return c;
 }
 
-void BM_Swim(benchmark::State& state, bool fine, bool semi_implicit) {
-  const jellyfish::SwimSettings s = bench_scene(fine, semi_implicit);
+void report(benchmark::State& state, const jellyfish::SwimSettings& s) {
   double wall = 0.0, simulated = 0.0, steps = 0.0, krylov = 0.0;
   for (auto _ : state) {
     const experiments::SwimRecording rec = experiments::run_swim(s, {}, nullptr, {});
+    if (!rec.stats.failure.empty()) state.SkipWithError(rec.stats.failure.c_str());
     wall += rec.stats.wall_seconds;
     simulated += rec.stats.simulated_seconds;
     steps += static_cast<double>(rec.stats.steps);
@@ -42,9 +44,31 @@ void BM_Swim(benchmark::State& state, bool fine, bool semi_implicit) {
   state.counters["krylov_per_step"] = steps > 0 ? krylov / steps : 0.0;
 }
 
-BENCHMARK_CAPTURE(BM_Swim, default_explicit, false, false)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_Swim, default_semi_implicit, false, true)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_Swim, fine_explicit, true, false)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_Swim, fine_semi_implicit, true, true)->Unit(benchmark::kSecond)->Iterations(1);
+void BM_Swim(benchmark::State& state, const char* overlay, bool semi_implicit) {
+  io::Config c = one_cycle(overlay);
+  c.set(std::string("coupling.scheme=") + (semi_implicit ? "semi-implicit" : "explicit"));
+  if (!semi_implicit) c.set("coupling.max_dt=0.0025");
+  report(state, experiments::read_swim_settings(c));
+}
+
+BENCHMARK_CAPTURE(BM_Swim, builtin_semi_implicit, nullptr, true)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Swim, thesis_explicit, "scenes/jellyfish-thesis.toml", false)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Swim, thesis_semi_implicit, "scenes/jellyfish-thesis.toml", true)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Swim, fine_semi_implicit, "scenes/jellyfish-fine.toml", true)->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_MarkerSpaceSolve(benchmark::State& state) {
+  io::Config c = one_cycle("scenes/jellyfish-fine.toml");
+  const std::string cells = std::to_string(state.range(0));
+  c.set("tank.cells=[" + cells + ", " + cells + "]");
+  c.set(std::string("coupling.preconditioner=") + (state.range(1) ? "mobility" : "none"));
+  c.set(std::string("tank.half_tank=") + (state.range(2) ? "true" : "false"));
+  report(state, experiments::read_swim_settings(c));
+}
+
+BENCHMARK(BM_MarkerSpaceSolve)
+    ->ArgNames({"cells", "mobility", "half"})
+    ->ArgsProduct({{60, 160, 320}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace

@@ -234,9 +234,10 @@ int main(int argc, char** argv) {
   std::string sweep_scene_path;
   std::vector<double> sweep_frequencies;
   auto* sweep = app.add_subcommand(
-      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, each "
-               "frequency at sweep.placements sub-cell positions of the bell (default 8; the coarse scene is "
-               "chaotic): sweep.csv (mean and spread), sweep_runs.csv, sweep.png, trajectories.png, summary.json");
+      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, on the "
+               "built-in scene or a scene file, each frequency at sweep.placements sub-cell positions of the bell "
+               "(default 1; 8 for the thesis's chaotic coarse tank): sweep.csv (mean and spread), sweep_runs.csv, "
+               "sweep.png, trajectories.png, summary.json");
   sweep->add_option("scene", sweep_scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
   sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")
@@ -287,7 +288,7 @@ int main(int argc, char** argv) {
       }
       std::optional<js::io::Config> scene;
       if (!sweep_scene_path.empty()) scene = js::io::Config::load(sweep_scene_path);
-      return run_experiment(js::experiments::find_experiment("frequency-sweep"), scene, sweep_opts);
+      return run_experiment(js::experiments::find_experiment("sweep"), scene, sweep_opts);
     }
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;

@@ -75,6 +75,14 @@ std::optional<Scheme> scheme_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view to_string(Preconditioner p) { return p == Preconditioner::none ? "none" : "mobility"; }
+
+std::optional<Preconditioner> preconditioner_from_string(std::string_view name) {
+  if (name == "none") return Preconditioner::none;
+  if (name == "mobility") return Preconditioner::mobility;
+  return std::nullopt;
+}
+
 ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& body, const CouplingSettings& settings,
                                    Actuator actuator)
     : fluid_(fluid),
@@ -85,9 +93,12 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
       projector_(fluid::make_pressure_solver(fluid.settings().pressure_solver, fluid.settings().pressure)),
       scratch_(fluid.state().grid),
       homogeneous_(fluid.settings().boundaries.homogeneous()),
-      base_field_(fluid.state().grid) {
+      base_field_(fluid.state().grid),
+      transfer_{fluid.state().grid, homogeneous_, settings.kernel, settings.west_mirror} {
   if (!(settings_.safety_factor > 0.0)) throw std::invalid_argument("coupling safety factor must be > 0");
   if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
+  if (settings_.west_mirror && homogeneous_.west.type != fluid::BoundaryType::free_slip)
+    throw std::invalid_argument("a mirror west side must be a free-slip wall");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
   refresh_markers();
 }
@@ -98,6 +109,79 @@ void ImmersedBoundary::refresh_markers() {
   has_targets_ = false;
   for (std::size_t p = 0; p < kind.size(); ++p)
     if (kind[p] != elastic::PointKind::Free) is_target_[p] = 1, has_targets_ = true;
+  mobility_points_.clear();  // the next preconditioned step rebuilds R
+  build_symmetric_unknowns();
+}
+
+void ImmersedBoundary::continue_from(const ImmersedBoundary& earlier) {
+  time_s_ = earlier.time_s_;
+  steps_ = earlier.steps_;
+  last_increment_ = earlier.last_increment_;
+}
+
+void ImmersedBoundary::set_mirror_symmetry(std::vector<int> partners) {
+  if (!partners.empty() && partners.size() != body_.points.size())
+    throw std::invalid_argument("mirror partners: one per point needed");
+  mirror_partner_ = std::move(partners);
+  build_symmetric_unknowns();
+  mobility_points_.clear();
+}
+
+void ImmersedBoundary::build_symmetric_unknowns() {
+  independent_.clear();
+  picked_rows_.clear();
+  if (mirror_partner_.size() != body_.points.size()) {
+    mirror_partner_.clear();
+    return;
+  }
+  // Unknowns of a symmetric increment: (x, y) of each point east of the axis (its partner moves by
+  // (−x, y)), and y alone of a point on the axis (its own partner). East, because a half tank
+  // solves the east half: their stencils need no mirror images.
+  std::vector<Eigen::Triplet<double>> q;
+  Eigen::Index d = 0;
+  const auto& x = body_.points.position;
+  for (std::size_t p = 0; p < mirror_partner_.size(); ++p) {
+    const auto partner = static_cast<std::size_t>(mirror_partner_[p]);
+    if (partner != p && x[p].x < x[partner].x) continue;
+    const auto row = 2 * static_cast<Eigen::Index>(independent_.size());
+    independent_.push_back(static_cast<int>(p));
+    const auto xp = 2 * static_cast<Eigen::Index>(p), xq = 2 * static_cast<Eigen::Index>(partner);
+    if (partner != p) {
+      q.emplace_back(xp, d, 1.0);
+      q.emplace_back(xq, d, -1.0);
+      picked_rows_.push_back(row);
+      ++d;
+      q.emplace_back(xp + 1, d, 1.0);
+      q.emplace_back(xq + 1, d, 1.0);
+    } else {
+      q.emplace_back(xp + 1, d, 1.0);
+    }
+    picked_rows_.push_back(row + 1);
+    ++d;
+  }
+  const auto n2 = 2 * static_cast<Eigen::Index>(mirror_partner_.size());
+  symmetric_basis_.resize(n2, d);
+  symmetric_basis_.setFromTriplets(q.begin(), q.end());
+  // pick_: unknown k is component picked of point independent_[…]; picked_rows_matrix_: the same
+  // selection from R's rows (two per independent point).
+  std::vector<Eigen::Triplet<double>> pick, rows;
+  for (std::size_t k = 0; k < picked_rows_.size(); ++k) {
+    const Eigen::Index row = picked_rows_[k];
+    const Eigen::Index point = independent_[static_cast<std::size_t>(row / 2)];
+    pick.emplace_back(static_cast<Eigen::Index>(k), 2 * point + row % 2, 1.0);
+    rows.emplace_back(static_cast<Eigen::Index>(k), row, 1.0);
+  }
+  pick_.resize(d, n2);
+  pick_.setFromTriplets(pick.begin(), pick.end());
+  picked_rows_matrix_.resize(d, 2 * static_cast<Eigen::Index>(independent_.size()));
+  picked_rows_matrix_.setFromTriplets(rows.begin(), rows.end());
+}
+
+void ImmersedBoundary::interpolate_at_markers(const fluid::Velocity& vel, std::vector<Vec2>& out) const {
+  const auto& x = body_.points.position;
+  out.resize(x.size());
+  if (settings_.west_mirror) interpolate_velocities(transfer_, vel, x, out);
+  else interpolate_velocities(vel, x, settings_.kernel, out);
 }
 
 Vec2 ImmersedBoundary::target_position(std::size_t p, double t) const {
@@ -182,11 +266,9 @@ void ImmersedBoundary::assemble_stiffness(Eigen::SparseMatrix<double>& k) const 
 
 void ImmersedBoundary::move_markers_with_fluid(double dt_s) {
   // Eq. 4.20: x(t + Δt) = x(t) + Δt u(x(t), t + Δt).
-  const fluid::Velocity& vel = fluid_.state().velocity;
   auto& x = body_.points.position;
   auto& v = body_.points.velocity;
-  v.resize(x.size());
-  interpolate_velocities(vel, x, settings_.kernel, v);
+  interpolate_at_markers(fluid_.state().velocity, v);
   for (std::size_t p = 0; p < x.size(); ++p) {
     if (has_targets_ && is_target_[p]) {
       // Target points are not carried by the fluid: they sit still or follow their path.
@@ -234,10 +316,22 @@ void ImmersedBoundary::project_spread_forces(std::span<Vec2> forces) {
 void ImmersedBoundary::apply_response(const Eigen::VectorXd& forces, Eigen::VectorXd& velocity_at_markers) {
   unflatten(forces, work_);
   project_spread_forces(work_);
-  velocity_.resize(work_.size());
-  interpolate_velocities(scratch_.velocity, body_.points.position, settings_.kernel, velocity_);
+  interpolate_at_markers(scratch_.velocity, velocity_);
   mask_target_forces(velocity_);  // the fluid does not move target points
   velocity_at_markers = flatten(velocity_);
+}
+
+Eigen::MatrixXd ImmersedBoundary::response_by_projections() {
+  const auto n = 2 * static_cast<Eigen::Index>(body_.points.size());
+  Eigen::MatrixXd r(n, n);
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(n), column;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    unit[k] = 1.0;
+    apply_response(unit, column);
+    r.col(k) = column;
+    unit[k] = 0.0;
+  }
+  return r;
 }
 
 CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
@@ -278,8 +372,7 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
     acc.u.fill(0.0);
     acc.v.fill(0.0);
   }
-  velocity_.resize(x.size());
-  interpolate_velocities(fluid_.state().velocity, x, settings_.kernel, velocity_);
+  interpolate_at_markers(fluid_.state().velocity, velocity_);
   if (has_targets_)  // target points move along their path: ΔX is known
     for (std::size_t p = 0; p < x.size(); ++p)
       if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + dt_s) - x[p]) / dt_s;
@@ -294,21 +387,36 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
     std::swap(base_field_, scratch_.velocity);  // P S (F + K x0) / ρ
     rhs += dt2 * response;
   }
-  // Each operator application spreads K v_k and projects it; keep those fields, so that the
+  // With the mobility preconditioner M ≈ A (exact to round-off with the FFT pressure solver),
+  //    GMRES solves A M⁻¹ y = rhs and e = M⁻¹ y: one iteration when M = A.
+  // Each operator application spreads K M⁻¹ v_k and projects it; keep those fields, so that the
   //    end-of-step force field P S K e is their combination with GMRES's coefficients.
+  const bool preconditioned = settings_.preconditioner == Preconditioner::mobility;
+  if (preconditioned) prepare_preconditioner(dt_s, stiffness);
+  // A mirror-symmetric scene has a symmetric solution: solve for it (the state is made symmetric
+  // after the step anyway), so that the last step's solver error does not seed an antisymmetric
+  // part the symmetric preconditioner would leave to plain GMRES.
+  if (!mirror_partner_.empty()) keep_symmetric_part(rhs);
   std::size_t applied = 0;
+  Eigen::VectorXd z;
   LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    if (preconditioned) apply_preconditioner(in, z);
+    const Eigen::VectorXd& e = preconditioned ? z : in;
     Eigen::VectorXd rkv;
-    apply_response(stiffness * in, rkv);
+    apply_response(stiffness * e, rkv);
     // Keep the field by swapping buffers (the next projection overwrites all of scratch_).
     if (applied >= basis_fields_.size()) basis_fields_.push_back(scratch_.velocity);
     else std::swap(basis_fields_[applied], scratch_.velocity);
     ++applied;
-    out = in - dt2 * rkv;
+    out = e - dt2 * rkv;
   };
   Eigen::VectorXd correction, coefficients;
   report.krylov = gmres_from_zero(op, rhs, correction, coefficients, settings_.krylov_tolerance,
                                   settings_.krylov_max_iterations);
+  if (preconditioned) {
+    apply_preconditioner(correction, z);
+    correction = z;
+  }
   const Eigen::VectorXd dx = x0 + correction;
   last_increment_ = dx;
 
@@ -331,6 +439,62 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
   move_markers_with_fluid(dt_s);
   return report;
+}
+
+void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMatrix<double>& stiffness) {
+  const auto& x = body_.points.position;
+  if (!mobility_) mobility_ = std::make_unique<MobilityMatrix>(transfer_);
+  bool rebuild = mobility_points_.size() != x.size();
+  if (!rebuild) {
+    const fluid::MacGrid& g = transfer_.grid;
+    const double limit = settings_.mobility_rebuild_cells * std::min(g.dx(), g.dy());
+    for (std::size_t p = 0; p < x.size() && !rebuild; ++p) rebuild = !(norm(x[p] - mobility_points_[p]) <= limit);
+  }
+  const bool symmetric = !mirror_partner_.empty();
+  if (rebuild) {
+    mobility_->assemble(x, is_target_, fluid_.settings().density_kg_per_m3, independent_, mobility_matrix_);
+    mobility_points_ = x;
+    ++mobility_builds_;
+    // On the symmetric unknowns: R_s = (picked rows of R) Q, the velocity of the picked unknowns
+    // per unit symmetric force (forces K Q y are symmetric: f = Q (picked f)).
+    if (symmetric) reduced_mobility_ = (picked_rows_matrix_ * mobility_matrix_) * symmetric_basis_;
+  }
+  // M = I − Δt² R K, factored every step (Δt and K change); the unknowns are few. Symmetric:
+  // M_s = I − Δt² R_s K_s with K_s = pick K Q.
+  const double dt2 = dt_s * dt_s;
+  if (symmetric) {
+    const Eigen::SparseMatrix<double> k_s = pick_ * stiffness * symmetric_basis_;
+    preconditioner_matrix_.noalias() = reduced_mobility_ * k_s;
+  } else {
+    preconditioner_matrix_.noalias() = mobility_matrix_ * stiffness;
+  }
+  preconditioner_matrix_ *= -dt2;
+  preconditioner_matrix_.diagonal().array() += 1.0;
+  preconditioner_lu_.compute(preconditioner_matrix_);
+}
+
+void ImmersedBoundary::keep_symmetric_part(Eigen::VectorXd& v) const {
+  for (std::size_t p = 0; p < mirror_partner_.size(); ++p) {
+    const auto q = static_cast<std::size_t>(mirror_partner_[p]);
+    if (q < p) continue;
+    const auto a = 2 * static_cast<Eigen::Index>(p), b = 2 * static_cast<Eigen::Index>(q);
+    const double x = 0.5 * (v[a] - v[b]), y = 0.5 * (v[a + 1] + v[b + 1]);
+    v[a] = x;
+    v[b] = -x;
+    v[a + 1] = v[b + 1] = y;
+  }
+}
+
+void ImmersedBoundary::apply_preconditioner(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
+  if (mirror_partner_.empty()) {
+    out = preconditioner_lu_.solve(in);
+    return;
+  }
+  // in = s + a with s = ½(in + mirror(in)) symmetric: out = Q M_s⁻¹ (picked s) + a.
+  Eigen::VectorXd symmetric = in;
+  keep_symmetric_part(symmetric);
+  const Eigen::VectorXd picked = pick_ * symmetric;
+  out = in - symmetric + symmetric_basis_ * preconditioner_lu_.solve(picked);
 }
 
 std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,

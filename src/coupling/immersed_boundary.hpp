@@ -10,13 +10,16 @@
 //    elastic–fluid exchange; on the default jellyfish it stays stable at 8 times the explicit
 //    scheme's largest step (docs/jellyfish.md).
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include "coupling/gmres.hpp"
 #include "coupling/kernels.hpp"
+#include "coupling/mobility.hpp"
 #include "elastic/body.hpp"
 #include "fluid/fluid_solver.hpp"
 
@@ -27,6 +30,15 @@ std::string_view to_string(Scheme s);
 /// "explicit" or "semi-implicit"; nullopt otherwise.
 std::optional<Scheme> scheme_from_string(std::string_view name);
 
+/// How the semi-implicit scheme's GMRES is preconditioned.
+enum class Preconditioner {
+  none,      ///< plain GMRES: one projection per iteration, tens of iterations on fine grids
+  mobility,  ///< the dense marker-space operator I − Δt² R K (mobility.hpp), LU-factored (right)
+};
+std::string_view to_string(Preconditioner p);
+/// "none" or "mobility"; nullopt otherwise.
+std::optional<Preconditioner> preconditioner_from_string(std::string_view name);
+
 struct CouplingSettings {
   Kernel kernel = Kernel::bilinear;
   Scheme scheme = Scheme::semi_implicit;
@@ -35,6 +47,13 @@ struct CouplingSettings {
   double min_time_step_s = 1e-7;   ///< a smaller Δt means the run cannot go on
   double krylov_tolerance = 1e-6;  ///< relative residual of the semi-implicit GMRES solve
   int krylov_max_iterations = 200;
+  Preconditioner preconditioner = Preconditioner::mobility;
+  /// The mobility R is rebuilt when a marker has moved this many cells since the last build
+  /// (0: every step, when R is exact and GMRES needs one iteration).
+  double mobility_rebuild_cells = 0.0;
+  /// The fluid's west side is a mirror plane (the half tank of a mirror-symmetric scene): markers
+  /// west of it and stencils reaching across it read the mirror image of the flow.
+  bool west_mirror = false;
 };
 
 /// Limits whose violation stops a run (thesis §8.1.4's two kinds of instability).
@@ -68,13 +87,25 @@ class ImmersedBoundary {
   const CouplingSettings& settings() const { return settings_; }
   fluid::FluidSolver& fluid() { return fluid_; }
   const elastic::Body& body() const { return body_; }
+  /// R = J P S / ρ built column by column, one spread-project-interpolate per unknown (2N
+  /// projections, any pressure solver): the reference the mobility matrix is tested against.
+  Eigen::MatrixXd response_by_projections();
+  /// How often the mobility preconditioner's R was built (for benchmarks).
+  long mobility_builds() const { return mobility_builds_; }
 
   /// Δt = τ·min(eqs. 4.8, 4.9) from the current fluid and marker speeds, at most max_time_step_s.
   double next_time_step() const;
   /// Advances fluid and markers by dt_s; the markers' velocities are stored in body().points.velocity.
   CoupledStepReport step(double dt_s);
+  /// Takes over another coupling's clock, step count and last increment (the same body on a new
+  /// fluid, e.g. the whole tank after its half).
+  void continue_from(const ImmersedBoundary& earlier);
   /// Call after adding points to the body or changing their kinds.
   void refresh_markers();
+  /// The body and flow are their own mirror images about a vertical line, partners[p] being the
+  /// mirror image of point p (elastic/mirror.hpp): the solve then looks for a symmetric increment
+  /// and the preconditioner works on the symmetric unknowns only (half of them). Empty: no symmetry.
+  void set_mirror_symmetry(std::vector<int> partners);
 
 
  private:
@@ -94,6 +125,17 @@ class ImmersedBoundary {
   /// Zeroes the entries of target points: they spread no force and are not moved by the fluid.
   void mask_target_forces(std::span<Vec2> values) const;
   void move_markers_with_fluid(double dt_s);
+  /// Fluid velocity at every marker (interpolation, also across a mirror side).
+  void interpolate_at_markers(const fluid::Velocity& vel, std::vector<Vec2>& out) const;
+  /// Rebuilds R when the markers have moved far enough, then factors M = I − Δt² R K (on the
+  /// mirror-symmetric unknowns when the scene is symmetric).
+  void prepare_preconditioner(double dt_s, const Eigen::SparseMatrix<double>& stiffness);
+  /// out = M⁻¹ in (the antisymmetric part of `in` passes unchanged when the scene is symmetric).
+  void apply_preconditioner(const Eigen::VectorXd& in, Eigen::VectorXd& out) const;
+  /// v → ½(v + mirror image of v) for marker vectors (x components odd, y even).
+  void keep_symmetric_part(Eigen::VectorXd& v) const;
+  /// The symmetric unknowns: Q maps them to marker increments, pick_ selects them back.
+  void build_symmetric_unknowns();
 
   fluid::FluidSolver& fluid_;
   elastic::Body& body_;
@@ -110,6 +152,20 @@ class ImmersedBoundary {
   std::vector<fluid::Velocity> basis_fields_;  ///< P S K v_k / ρ for GMRES's basis vectors v_k
   std::vector<char> is_target_;  ///< pinned or prescribed points: Peskin's target points
   bool has_targets_ = false;
+  TransferGeometry transfer_;
+  std::unique_ptr<MobilityMatrix> mobility_;  ///< built at the first preconditioned step
+  Eigen::MatrixXd mobility_matrix_;           ///< R at mobility_points_
+  std::vector<Vec2> mobility_points_;         ///< marker positions R was built for
+  Eigen::PartialPivLU<Eigen::MatrixXd> preconditioner_lu_;
+  long mobility_builds_ = 0;
+  std::vector<int> mirror_partner_;  ///< empty unless the scene is mirror-symmetric
+  std::vector<int> independent_;     ///< points p with partner ≥ p: whose rows R needs
+  Eigen::SparseMatrix<double> symmetric_basis_;  ///< Q: 2N × d, symmetric unknowns → increments
+  Eigen::SparseMatrix<double> pick_;              ///< d × 2N: the unknowns of a symmetric increment
+  std::vector<Eigen::Index> picked_rows_;         ///< for each symmetric unknown, its row in R's rows
+  Eigen::SparseMatrix<double> picked_rows_matrix_;  ///< d × (rows of R): selects picked_rows_
+  Eigen::MatrixXd reduced_mobility_;                ///< R_s = (picked rows of R) Q
+  Eigen::MatrixXd preconditioner_matrix_;           ///< M (or M_s), kept to avoid reallocation
 };
 
 /// Problems that should stop a run, or "" when none: "numerical instability: ..." (NaN, runaway

@@ -21,6 +21,7 @@ Experiment morphology_experiment();
 Experiment structural_instability_experiment();
 Experiment numerical_instability_experiment();
 Experiment frequency_sweep_experiment();
+Experiment sweep_experiment();
 Experiment fluidless_experiment();
 Experiment coupling_stability_experiment();
 Experiment bar_hits_wall_experiment();
@@ -37,7 +38,7 @@ const std::vector<Experiment>& all_experiments() {
                                                driven_cavity_experiment(), taylor_green_experiment(),
                                                solver_cost_experiment(), jellyfish_experiment(), animation_experiment(), oval_membrane_experiment(), kinematics_experiment(),
                                                morphology_experiment(), structural_instability_experiment(),
-                                               numerical_instability_experiment(), frequency_sweep_experiment(),
+                                               numerical_instability_experiment(), frequency_sweep_experiment(), sweep_experiment(),
                                                fluidless_experiment(), coupling_stability_experiment(), bar_hits_wall_experiment(),
                                                bar_hits_particle_experiment(), sph_stream_experiment(),
                                                mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
@@ -65,6 +66,8 @@ io::Config default_config(const Experiment& experiment) {
   io::Config own = io::Config::parse(embedded_text(experiment.definition_path), "built-in " + experiment.definition_path);
   if (experiment.base_path.empty()) return own;
   io::Config base = io::Config::parse(embedded_text(experiment.base_path), "built-in " + experiment.base_path);
+  if (!experiment.base_overlay_path.empty())
+    base.merge(io::Config::parse(embedded_text(experiment.base_overlay_path), "built-in " + experiment.base_overlay_path));
   base.extend(own);
   return base;
 }

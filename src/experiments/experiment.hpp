@@ -34,6 +34,9 @@ struct Experiment {
   /// Optional embedded scene whose fields the definition extends (e.g. "scenes/jellyfish.toml"): the
   /// defaults are the base scene's, overridden and extended by the definition file.
   std::string base_path{};
+  /// Optional embedded scene file laid over the base before the definition (like a user's scene
+  /// file), e.g. "scenes/jellyfish-thesis.toml": the chapter 8 studies run on the thesis's tank.
+  std::string base_overlay_path{};
 };
 
 const std::vector<Experiment>& all_experiments();

@@ -265,6 +265,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.tracers_per_side = static_cast<int>(c.integer("tank.tracers_per_side", 0, 1000));
   t.current_m_per_s = c.vec2("tank.current");
   const std::string symmetry = c.choice("tank.symmetry", {"auto", "mirror", "none"});
+  t.half_tank = c.boolean("tank.half_tank");
   t.symmetry = symmetry == "auto"     ? jellyfish::MirrorSymmetry::automatic
                : symmetry == "mirror" ? jellyfish::MirrorSymmetry::mirror
                                       : jellyfish::MirrorSymmetry::none;
@@ -280,6 +281,8 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   k.min_time_step_s = c.number("coupling.min_dt", io::Range::positive());
   k.krylov_tolerance = c.number("coupling.krylov_tolerance", io::Range{0.0, 1.0, true, true});
   k.krylov_max_iterations = static_cast<int>(c.integer("coupling.krylov_max_iterations", 1, 100000));
+  k.preconditioner = *coupling::preconditioner_from_string(c.choice("coupling.preconditioner", {"mobility", "none"}));
+  k.mobility_rebuild_cells = c.number("coupling.mobility_rebuild", io::Range::closed(0.0, 10.0));
 
   s.limits.max_speed_m_per_s = c.number("stability.max_speed", io::Range::positive());
   s.limits.max_strain = c.number("stability.max_strain", io::Range::positive());
@@ -507,6 +510,7 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
   j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
   j["fluid_solver"] = settings.tank.solver;
   j["symmetry"] = rec.stats.mirror_symmetric ? "mirror" : "none";
+  j["half_tank"] = rec.stats.half_tank;
   if (!rec.stats.symmetry_note.empty()) j["symmetry_note"] = rec.stats.symmetry_note;
   return j;
 }

@@ -202,6 +202,7 @@ Experiment steering_experiment() {
   Experiment e{"steering", "A jellyfish steered toward a point on its left, not steered, and steered right (beyond §9.2.2)",
                "experiments/steering.toml", prepare_steering};
   e.base_path = "scenes/jellyfish.toml";
+  e.base_overlay_path = "scenes/jellyfish-thesis.toml";  // measured on the thesis's tank (docs/scenes.md)
   return e;
 }
 

@@ -74,6 +74,8 @@ class FluidSolver {
   FaceAccelerations& body_acceleration() { return body_acceleration_; }
   const FluidSettings& settings() const { return settings_; }
   double time_s() const { return time_s_; }
+  /// Sets the clock (a solver that takes over another's flow).
+  void set_time_s(double t) { time_s_ = t; }
   /// Changes the kinematic viscosity ν (m²/s, ≥ 0) from the next step on (live edits).
   void set_viscosity(double nu_m2_per_s);
   /// Re-applies the boundary conditions to the current velocity (after external edits).

@@ -1,6 +1,9 @@
 #include "fluid/mirror.hpp"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "fluid/projection.hpp"
 
 namespace jellysim::fluid {
 
@@ -40,6 +43,37 @@ void keep_mirror_symmetric_part(FlowState& flow) {
   keep_symmetric_part(flow.velocity.u, -1.0);
   keep_symmetric_part(flow.velocity.v, +1.0);
   keep_symmetric_part(flow.pressure, +1.0);
+}
+
+MacGrid east_half(const MacGrid& full) {
+  if (full.nx % 2 != 0) throw std::invalid_argument("the half tank needs an even number of cells across");
+  return MacGrid(full.nx / 2, full.ny, 0.5 * full.width_m, full.height_m,
+                 {full.origin_m.x + 0.5 * full.width_m, full.origin_m.y});
+}
+
+namespace {
+
+/// Interior samples of a full-tank field from the east half: column i of the full field is column
+/// i − n/2 of the half east of the axis, and the mirror image (times sign) of column total − i west of it.
+void unfold(const Field& half, Field& full, double sign) {
+  const int offset = half.grid().nx;  // columns of the full tank west of the axis
+  const int total = mirror_column_total(full);
+  for (int j = 0; j < full.count_y(); ++j)
+    for (int i = 0; i < full.count_x(); ++i)
+      full(i, j) = i >= offset ? half(i - offset, j) : sign * half(total - i - offset, j);
+}
+
+}  // namespace
+
+void unfold_east_half(const FlowState& half, FlowState& full, const Boundaries& full_sides) {
+  if (full.grid.nx != 2 * half.grid.nx || full.grid.ny != half.grid.ny) full = FlowState(MacGrid(
+      2 * half.grid.nx, half.grid.ny, 2 * half.grid.width_m, half.grid.height_m,
+      {half.grid.origin_m.x - half.grid.width_m, half.grid.origin_m.y}));
+  unfold(half.velocity.u, full.velocity.u, -1.0);
+  unfold(half.velocity.v, full.velocity.v, +1.0);
+  unfold(half.pressure, full.pressure, +1.0);
+  refresh_velocity_ghosts(full.velocity, full_sides);
+  fill_pressure_ghosts(full.pressure, full_sides);
 }
 
 double mirror_asymmetry(const Velocity& velocity) {

@@ -157,22 +157,6 @@ void validate_layout(const SwimSettings& settings) {
 
 SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(settings) {
   const TankSpec& t = settings_.tank;
-  const fluid::MacGrid grid(t.cells_x, t.cells_y, t.width_m, t.height_m);
-  fluid::FluidSettings fs;
-  fs.viscosity_m2_per_s = t.viscosity_m2_per_s;
-  fs.density_kg_per_m3 = t.density_kg_per_m3;
-  fs.boundaries = t.boundaries;
-  fs.pressure_solver = t.pressure_solver;
-  fs.pressure.relative_tolerance = t.pressure_tolerance;
-  fs.diffusion_tolerance = std::min(fs.diffusion_tolerance, t.pressure_tolerance);
-  fs.safety_factor = 1.0;  // the coupling chooses Δt; the Eulerian solver only guards it
-  fluid_ = fluid::make_fluid_solver(t.solver, grid, fs);
-  if (t.current_m_per_s.x != 0.0 || t.current_m_per_s.y != 0.0) {
-    fluid_->state().velocity.u.fill(t.current_m_per_s.x);
-    fluid_->state().velocity.v.fill(t.current_m_per_s.y);
-    fluid_->apply_boundaries();
-  }
-
   for (const JellyfishSpec& spec : settings_.school) {
     school_.push_back(std::make_unique<Jellyfish>(spec));
     jellyfish_offset_.push_back(static_cast<int>(body_.points.size()));
@@ -195,13 +179,73 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
   strain_reference_.resize(body_.linear.size(), 0.0);  // tethers have zero rest length: no strain
 
   set_up_mirror_symmetry();
-  coupling_ = std::make_unique<coupling::ImmersedBoundary>(*fluid_, body_, settings_.coupling,
-                                                           [this](double time, elastic::Body&) { actuate(time); });
+  half_tank_ = mirror_active_ && t.half_tank && t.cells_x % 2 == 0;
+  fluid_ = make_fluid(half_tank_);
+  coupling_ = make_coupling(half_tank_);
   if (t.tracers_per_side > 0) {
     const double margin_x = 0.5 * t.width_m / t.tracers_per_side, margin_y = 0.5 * t.height_m / t.tracers_per_side;
     tracers_ = fluid::Tracers::lattice({margin_x, margin_y}, {t.width_m - margin_x, t.height_m - margin_y},
                                        t.tracers_per_side, t.tracers_per_side);
   }
+}
+
+std::unique_ptr<fluid::FluidSolver> SwimSimulation::make_fluid(bool east_half) const {
+  const TankSpec& t = settings_.tank;
+  const fluid::MacGrid whole(t.cells_x, t.cells_y, t.width_m, t.height_m);
+  fluid::FluidSettings fs;
+  fs.viscosity_m2_per_s = fluid_ ? fluid_->settings().viscosity_m2_per_s : t.viscosity_m2_per_s;  // live edits stay
+  fs.density_kg_per_m3 = t.density_kg_per_m3;
+  fs.boundaries = t.boundaries;
+  if (east_half) {
+    // The centre line is a symmetry plane: free slip (u = 0, v and p even). A periodic tank's
+    // seam is one too.
+    fs.boundaries.west = {fluid::BoundaryType::free_slip, {}};
+    if (t.boundaries.periodic_x()) fs.boundaries.east = {fluid::BoundaryType::free_slip, {}};
+  }
+  fs.pressure_solver = t.pressure_solver;
+  fs.pressure.relative_tolerance = t.pressure_tolerance;
+  fs.diffusion_tolerance = std::min(fs.diffusion_tolerance, t.pressure_tolerance);
+  fs.safety_factor = 1.0;  // the coupling chooses Δt; the Eulerian solver only guards it
+  auto fluid = fluid::make_fluid_solver(t.solver, east_half ? fluid::east_half(whole) : whole, fs);
+  if (t.current_m_per_s.x != 0.0 || t.current_m_per_s.y != 0.0) {
+    fluid->state().velocity.u.fill(t.current_m_per_s.x);
+    fluid->state().velocity.v.fill(t.current_m_per_s.y);
+    fluid->apply_boundaries();
+  }
+  return fluid;
+}
+
+std::unique_ptr<coupling::ImmersedBoundary> SwimSimulation::make_coupling(bool east_half) {
+  coupling::CouplingSettings c = settings_.coupling;
+  c.west_mirror = east_half;
+  auto coupling = std::make_unique<coupling::ImmersedBoundary>(*fluid_, body_, c,
+                                                              [this](double time, elastic::Body&) { actuate(time); });
+  if (mirror_active_) coupling->set_mirror_symmetry(mirror_partner_);
+  return coupling;
+}
+
+void SwimSimulation::leave_half_tank() {
+  if (!half_tank_) return;
+  fluid::FlowState whole;
+  fluid::unfold_east_half(fluid_->state(), whole, settings_.tank.boundaries);
+  std::unique_ptr<fluid::FluidSolver> fluid = make_fluid(false);
+  fluid->state().velocity = whole.velocity;
+  fluid->state().pressure = whole.pressure;
+  fluid->set_time_s(fluid_->time_s());
+  std::unique_ptr<coupling::ImmersedBoundary> previous = std::move(coupling_);
+  fluid_ = std::move(fluid);  // the previous coupling refers to the old fluid: keep it alive until here
+  half_tank_ = false;
+  coupling_ = make_coupling(false);
+  coupling_->continue_from(*previous);
+}
+
+const fluid::FlowState& SwimSimulation::flow() const {
+  if (!half_tank_) return fluid_->state();
+  if (unfolded_step_ != steps()) {
+    fluid::unfold_east_half(fluid_->state(), unfolded_, settings_.tank.boundaries);
+    unfolded_step_ = steps();
+  }
+  return unfolded_;
 }
 
 SwimSimulation::~SwimSimulation() = default;
@@ -241,13 +285,15 @@ void SwimSimulation::set_up_mirror_symmetry() {
 }
 
 void SwimSimulation::keep_mirror_symmetry() {
-  fluid::keep_mirror_symmetric_part(fluid_->state());
+  if (!half_tank_) fluid::keep_mirror_symmetric_part(fluid_->state());  // the half tank is symmetric by construction
   elastic::keep_mirror_symmetric_part(body_, mirror_partner_, 0.5 * settings_.tank.width_m);
 }
 
 void SwimSimulation::end_mirror_symmetry(const std::string& why) {
   if (!mirror_active_) return;
   mirror_active_ = false;
+  leave_half_tank();
+  coupling_->set_mirror_symmetry({});
   std::ostringstream note;
   note.precision(4);
   note << "ended at t = " << time_s() << " s: " << why;
@@ -279,7 +325,7 @@ Vec2 SwimSimulation::obstacle_force(std::size_t i) const { return obstacle_fluid
 
 double SwimSimulation::obstacle_leakage(std::size_t i) const {
   const ObstacleParts& parts = obstacles_.at(i);
-  const fluid::Velocity& u = fluid_->state().velocity;
+  const fluid::Velocity& u = flow().velocity;
   const auto& x = body_.points.position;
   const auto& v = body_.points.velocity;
   double crossing = 0.0;
@@ -332,7 +378,7 @@ SwimStep SwimSimulation::advance(double dt_s) {
   if (mirror_active_) keep_mirror_symmetry();
   copy_back_to_jellyfish();
   s.krylov_iterations = r.krylov.iterations;
-  if (!tracers_.positions().empty()) tracers_.advect(fluid_->state().velocity, settings_.tank.boundaries, s.dt_s);
+  if (!tracers_.positions().empty()) tracers_.advect(flow().velocity, settings_.tank.boundaries, s.dt_s);
   if (std::string problem = check(); !problem.empty()) s.failure = problem + when(time_s(), coupling_->steps());
   return s;
 }
@@ -348,6 +394,7 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
     stats.simulated_seconds = time_s();
     stats.steps = coupling_->steps();
     stats.mirror_symmetric = mirror_active_;
+    stats.half_tank = half_tank_;
     stats.symmetry_note = mirror_note_;
     stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!std::isfinite(stats.smallest_step_s)) stats.smallest_step_s = 0.0;

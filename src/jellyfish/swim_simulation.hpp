@@ -41,6 +41,9 @@ struct TankSpec {
   int tracers_per_side = 0;  ///< marker particles on a lattice over the whole tank (Figs 8.11/8.12)
   Vec2 current_m_per_s{};    ///< uniform background flow at t = 0 (with inflow/outflow or periodic sides)
   MirrorSymmetry symmetry = MirrorSymmetry::none;
+  /// While the mirror symmetry is kept, solve only the east half of the tank, with a symmetry
+  /// plane (a free-slip wall) on the centre line: half the fluid. Needs an even cells_x.
+  bool half_tank = true;
 };
 
 struct SwimSettings {
@@ -65,6 +68,7 @@ struct SwimRunStats {
   double largest_step_s = 0.0;
   long krylov_iterations = 0;
   bool mirror_symmetric = false;  ///< the run kept the mirror symmetry (to its end)
+  bool half_tank = false;         ///< the run solved the east half of the tank (to its end)
   std::string symmetry_note;      ///< why it did not, if symmetry was asked for
   std::string failure;  ///< "numerical instability: …" or "structural instability: …" with when/where
 };
@@ -104,7 +108,10 @@ class SwimSimulation {
   double obstacle_leakage(std::size_t i) const;
   /// Every marker of every body in one spring body (jellyfish first, then obstacles).
   const elastic::Body& body() const { return body_; }
-  const fluid::FlowState& flow() const { return fluid_->state(); }
+  /// The flow in the whole tank (unfolded from the east half when solving the half tank).
+  const fluid::FlowState& flow() const;
+  /// True while only the east half of the tank is solved (TankSpec::half_tank).
+  bool solving_half_tank() const { return half_tank_; }
   const fluid::Tracers& tracers() const { return tracers_; }
   /// The problem that should stop the run now, or "".
   std::string check() const;
@@ -136,6 +143,11 @@ class SwimSimulation {
   SwimStep advance(double dt_s);
   void actuate(double t);
   void copy_back_to_jellyfish();
+  /// A fluid solver for the whole tank or its east half, at rest or with the current.
+  std::unique_ptr<fluid::FluidSolver> make_fluid(bool east_half) const;
+  std::unique_ptr<coupling::ImmersedBoundary> make_coupling(bool east_half);
+  /// Continues on the whole tank from the unfolded half (a live edit broke the symmetry).
+  void leave_half_tank();
   void set_up_mirror_symmetry();
   void keep_mirror_symmetry();
   /// A live edit that makes the scene asymmetric ends the mirror symmetry, saying why.
@@ -157,6 +169,9 @@ class SwimSimulation {
   std::vector<double> strain_reference_;  ///< rest lengths at build time (muscles uncontracted)
   SwimRunStats totals_;
   bool mirror_active_ = false;
+  bool half_tank_ = false;
+  mutable fluid::FlowState unfolded_;  ///< flow() of the half tank, for the step it was made at
+  mutable long unfolded_step_ = -1;
   std::string mirror_note_;
   std::vector<int> mirror_partner_;          ///< per point of body_, its mirror image
   std::vector<int> jellyfish_mirror_;        ///< per jellyfish, the one that is its mirror image

@@ -115,14 +115,14 @@ TEST(JellyfishCli, RunDrawsTheSceneObstaclesAsPrisms) {
   const fs::path dir = fresh("run_obstacles"), plain = fresh("run_plain");
   fs::create_directories(dir.parent_path());
   const fs::path scene = dir.parent_path() / "jelly_obstacles_scene.toml";
-  std::ofstream(scene) << "scene = \"jellyfish\"\n[jellyfish]\nposition = [0.4, 0.25]\n"
-                          "[[objects]]\ntype = \"box\"\ncentre = [0.6, 0.45]\nsize = [0.08, 0.03]\nangle_deg = 30.0\n"
-                          "[[objects]]\ntype = \"circle\"\ncentre = [0.4, 0.5]\nradius = 0.03\n";
+  std::ofstream(scene) << "scene = \"jellyfish\"\n"
+                          "[[objects]]\ntype = \"box\"\ncentre = [0.18, 0.2]\nsize = [0.04, 0.015]\nangle_deg = 30.0\n"
+                          "[[objects]]\ntype = \"circle\"\ncentre = [0.12, 0.25]\nradius = 0.02\n";
   const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
                             "--set render.viewer=false --set render.obj=true --set render.ply=false --out ";
   const Result r = run_cli("run " + scene.string() + quick + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const Result r0 = run_cli("run --set jellyfish.position=[0.4,0.25]" + quick + plain.string());
+  const Result r0 = run_cli("run" + quick + plain.string());
   ASSERT_EQ(r0.exit_code, 0) << r0.output;
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
   const auto s0 = nlohmann::json::parse(slurp(plain / "summary.json"));
@@ -171,8 +171,8 @@ TEST(JellyfishCli, SweepRunsEveryFrequency) {
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
   ASSERT_EQ(s["runs"].size(), 4u);
   EXPECT_EQ(s["placements"].get<int>(), 2);
-  // Placement 1 starts half a cell (0.8 m / 60 / 2) further along the axis.
-  EXPECT_DOUBLE_EQ(s["runs"][1]["offset"].get<double>(), 0.8 / 60 / 2);
+  // Placement 1 starts half a cell (0.24 m / 96 / 2) further along the axis.
+  EXPECT_DOUBLE_EQ(s["runs"][1]["offset"].get<double>(), 0.24 / 96 / 2);
   for (int f = 0; f < 2; ++f) {
     const double a = s["runs"][2 * f]["distance_travelled"], b = s["runs"][2 * f + 1]["distance_travelled"];
     const double mean = 0.5 * (a + b);

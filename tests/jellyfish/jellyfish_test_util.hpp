@@ -1,5 +1,7 @@
 #pragma once
-// Shared by the jellyfish tests: the default scene with a TOML overlay, tracers off.
+// Shared by the jellyfish tests: the jellyfish scene on the thesis's coarse tank (80 cm, 60 × 60
+// cells: fast, and where the scenes of these tests were laid out) with a TOML overlay, tracers off.
+// The built-in (resolved) scene is tested in test_swim.cpp.
 #include <string>
 
 #include "experiments/experiment.hpp"
@@ -9,6 +11,7 @@ namespace jellysim::experiments::testing {
 
 inline io::Config scene_with(const std::string& overlay) {
   io::Config c = default_config(find_experiment("jellyfish"));
+  c.merge(io::Config::parse(embedded_text("scenes/jellyfish-thesis.toml"), "scenes/jellyfish-thesis.toml"));
   c.set("tank.tracers_per_side=0");
   c.merge(io::Config::parse(overlay, "test scene"));
   return c;

@@ -81,13 +81,28 @@ TEST(MirrorSymmetry, InsistingOnItRejectsAnAsymmetricScene) {
 TEST(MirrorSymmetry, LiveEditsThatBreakItEndIt) {
   {
     jellyfish::SwimSimulation sim(scene(""));
+    EXPECT_TRUE(sim.solving_half_tank());
+    for (int k = 0; k < 5; ++k) ASSERT_TRUE(sim.step().failure.empty());
     sim.set_frequency(0, 0.9);  // one centred bell stays its own mirror image
     sim.set_gamma(0, 0.6);
     sim.move_jellyfish(0, {0.0, 0.01});
     EXPECT_TRUE(sim.mirror_symmetric());
+    EXPECT_TRUE(sim.solving_half_tank());
+    const fluid::FlowState before = sim.flow();  // unfolded from the half tank
+    const double t = sim.time_s();
+    const long steps = sim.steps();
     sim.stir({0.3, 0.5}, {0.01, 0.0}, 0.02);
     EXPECT_FALSE(sim.mirror_symmetric());
     EXPECT_NE(sim.mirror_symmetry_note().find("stirred"), std::string::npos) << sim.mirror_symmetry_note();
+    // The run goes on in the whole tank from the unfolded flow, on the same clock.
+    EXPECT_FALSE(sim.solving_half_tank());
+    EXPECT_EQ(sim.flow().grid.nx, before.grid.nx);
+    EXPECT_EQ(sim.time_s(), t);
+    EXPECT_EQ(sim.steps(), steps);
+    EXPECT_EQ(sim.flow().velocity.v(45, 20), before.velocity.v(45, 20));  // far from the stirring
+    EXPECT_EQ(sim.flow().velocity.v(14, 20), before.velocity.v(14, 20));
+    for (int k = 0; k < 5; ++k) ASSERT_TRUE(sim.step().failure.empty());
+    EXPECT_EQ(sim.steps(), steps + 5);
   }
   {
     jellyfish::SwimSimulation sim(scene(kTwoAlike));

@@ -37,6 +37,11 @@ jellysim::testing::CliResult run_viewer_headless(const std::string& args) {
   return r;
 }
 
+// The scripted tests run on the thesis's 80 cm tank (scenes/jellyfish-thesis.toml: quick under the
+// sanitizers, and the screen positions below are laid out for it).
+const std::string kThesisScene = std::string(JELLYSIM_SOURCE_DIR) + "/scenes/jellyfish-thesis.toml";
+const char* kThesisTank = "[tank]\nwidth = 0.8\nheight = 0.8\ncells = [60, 60]\n";
+
 // The 1280 × 720 layout the scripted tests ask for: controls 330 px on the right, the 2D panel in the left half of
 // the rest (475 px), the tank fitted into it with a 4 px margin (docs/viewer.md).
 constexpr double kScalePxPerM = (475.0 - 8.0) / 0.8;
@@ -55,7 +60,7 @@ TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_scripted");
   std::filesystem::create_directories(dir);
-  // The default jellyfish's apex is at (0.4, 0.328) m: grab it there and drag it 0.1 m right.
+  // The thesis scene's jellyfish has its apex at (0.4, 0.328) m: grab it there and drag it 0.1 m right.
   const double x0 = screen_x(0.4), y0 = screen_y(0.328), x1 = screen_x(0.5);
   const std::string script = "5 pause\n"
                              "8 mark paused\n"
@@ -67,7 +72,8 @@ TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
                              "40 drag 100 200 160 200 5  # stir the water\n"
                              "55 mark running\n";
   std::ofstream(dir / "input.txt") << script;
-  const auto r = run_viewer_headless("--width 1280 --height 720 --frames 60 --fps 0 --script " + (dir / "input.txt").string() +
+  const auto r = run_viewer_headless(kThesisScene + " --width 1280 --height 720 --frames 60 --fps 0 --script " +
+                                     (dir / "input.txt").string() +
                                      " --screenshot " + (dir / "shot.png").string() + " --stats " +
                                      (dir / "stats.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -133,7 +139,8 @@ TEST(Viewer, DraggingAnObstacleMovesIt) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_obstacle");
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << "scene = \"jellyfish\"\n[[objects]]\ntype = \"circle\"\n"
+  std::ofstream(dir / "scene.toml") << "scene = \"jellyfish\"\n" << kThesisTank
+                                    << "[jellyfish]\nposition = [0.4, 0.3]\n[[objects]]\ntype = \"circle\"\n"
                                        "centre = [0.2, 0.6]\nradius = 0.04\n";
   const std::string drag = "2 pause; 3 drag " + std::to_string(screen_x(0.2)) + " " + std::to_string(screen_y(0.6)) +
                            " " + std::to_string(screen_x(0.3)) + " " + std::to_string(screen_y(0.55)) +
@@ -156,7 +163,8 @@ TEST(Viewer, ObstaclesAppearAsPrismsInThe3DPanel) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_prisms");
   std::filesystem::create_directories(dir);
-  const std::string two_jellyfish = "scene = \"jellyfish\"\n[jellyfish]\nposition = [0.3, 0.3]\n"
+  const std::string two_jellyfish = "scene = \"jellyfish\"\n" + std::string(kThesisTank) +
+                                    "[jellyfish]\nposition = [0.3, 0.3]\n"
                                     "[[objects]]\ntype = \"jellyfish\"\nposition = [0.5, 0.3]\n";
   std::ofstream(dir / "box.toml") << two_jellyfish << "[[objects]]\ntype = \"box\"\ncentre = [0.4, 0.3]\nsize = [0.04, 0.04]\n";
   std::ofstream(dir / "none.toml") << two_jellyfish;
