@@ -7,12 +7,17 @@
 //  - BM_MarkerSpaceSolve/<cells>/<preconditioner>/<half>: one cycle of the fine scene's 40 cm tank
 //    at cells × cells (60, 160, 320), plain GMRES (0, the coupling before the marker-space solve) or
 //    the mobility preconditioner (1), on the whole tank (0) or its east half (1).
+//  - BM_MobilityAssemble/<half>: one build of the dense mobility for the built-in scene's markers at
+//    rest (what the marker-space solve does every step): the whole tank (0), or the east half's rows
+//    on the half tank (1, as the default run does).
 // Counters: wall seconds per simulated second (wall_per_sim_s; < 0.1 means ten times faster than
 // real time), steps per simulated second and Krylov (GMRES) iterations per step.
 #include <benchmark/benchmark.h>
 
+#include "coupling/mobility.hpp"
 #include "experiments/experiment.hpp"
 #include "experiments/jellyfish_runs.hpp"
+#include "jellyfish/swim_simulation.hpp"
 
 namespace {
 
@@ -70,5 +75,30 @@ BENCHMARK(BM_MarkerSpaceSolve)
     ->ArgsProduct({{60, 160, 320}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
+
+void BM_MobilityAssemble(benchmark::State& state) {
+  const jellyfish::SwimSettings s = experiments::read_swim_settings(one_cycle(nullptr));
+  const jellyfish::SwimSimulation sim(s);
+  const std::vector<Vec2>& x = sim.body().points.position;
+  const bool half = state.range(0) != 0;
+  coupling::TransferGeometry g;
+  const double w = s.tank.width_m, h = s.tank.height_m;
+  g.grid = half ? fluid::MacGrid(s.tank.cells_x / 2, s.tank.cells_y, 0.5 * w, h, Vec2{0.5 * w, 0.0})
+                : fluid::MacGrid(s.tank.cells_x, s.tank.cells_y, w, h);
+  g.sides = s.tank.boundaries.homogeneous();
+  g.west_mirror = half;
+  const coupling::MobilityMatrix mobility(g);
+  std::vector<int> rows;  // on the half tank: the points on or east of the axis
+  for (std::size_t p = 0; p < x.size(); ++p)
+    if (!half || x[p].x >= 0.5 * w - 1e-12) rows.push_back(static_cast<int>(p));
+  Eigen::MatrixXd r;
+  for (auto _ : state) {
+    mobility.assemble(x, {}, s.tank.density_kg_per_m3, rows, r);
+    benchmark::DoNotOptimize(r.data());
+  }
+  state.counters["rows"] = static_cast<double>(r.rows());
+  state.counters["columns"] = static_cast<double>(r.cols());
+}
+BENCHMARK(BM_MobilityAssemble)->ArgName("half")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
