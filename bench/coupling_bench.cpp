@@ -53,7 +53,7 @@ void BM_Swim(benchmark::State& state, const char* overlay, bool semi_implicit) {
   io::Config c = one_cycle(overlay);
   c.set(std::string("coupling.scheme=") + (semi_implicit ? "semi-implicit" : "explicit"));
   if (!semi_implicit) c.set("coupling.max_dt=0.0025");
-  report(state, experiments::read_swim_settings(c));
+  report(state, scene::read_swim_settings(c));
 }
 
 BENCHMARK_CAPTURE(BM_Swim, builtin_semi_implicit, nullptr, true)->Unit(benchmark::kSecond)->Iterations(1);
@@ -67,7 +67,7 @@ void BM_MarkerSpaceSolve(benchmark::State& state) {
   c.set("tank.cells=[" + cells + ", " + cells + "]");
   c.set(std::string("coupling.preconditioner=") + (state.range(1) ? "mobility" : "none"));
   c.set(std::string("tank.half_tank=") + (state.range(2) ? "true" : "false"));
-  report(state, experiments::read_swim_settings(c));
+  report(state, scene::read_swim_settings(c));
 }
 
 BENCHMARK(BM_MarkerSpaceSolve)
@@ -77,7 +77,7 @@ BENCHMARK(BM_MarkerSpaceSolve)
     ->Iterations(1);
 
 void BM_MobilityAssemble(benchmark::State& state) {
-  const jellyfish::SwimSettings s = experiments::read_swim_settings(one_cycle(nullptr));
+  const jellyfish::SwimSettings s = scene::read_swim_settings(one_cycle(nullptr));
   const jellyfish::SwimSimulation sim(s);
   const std::vector<Vec2>& x = sim.body().points.position;
   const bool half = state.range(0) != 0;

@@ -4,6 +4,9 @@
 #include "experiments/jellyfish_runs.hpp"
 #include "io/embedded_data.hpp"
 #include "io/errors.hpp"
+#include "scene/jellyfish_scene.hpp"
+#include "scene/reference.hpp"
+#include "scene/render_settings.hpp"
 
 #include "viewer/viewer.hpp"
 
@@ -111,7 +114,13 @@ int list_definitions(const std::string& name) {
     }
     return 0;
   }
-  std::cout << js::experiments::embedded_text(js::experiments::find_experiment(name).definition_path);
+  const auto& e = js::experiments::find_experiment(name);
+  std::cout << js::experiments::definition_text(e.definition_path);
+  if (e.renders) {
+    std::cout << "\n# The 3D pipeline's [render] section: every field with its default (a [render] table above\n"
+                 "# overrides some of them).\n"
+              << js::scene::render_parameters().scene_toml();
+  }
   return 0;
 }
 
@@ -176,20 +185,9 @@ std::string read_text_file(const std::string& path) {
 
 /// Loads the scene like `simulate` does (built-in jellyfish scene, scene file, --set) and runs the viewer.
 int run_view(ViewCommand& v) {
-  const auto& e = js::experiments::find_experiment("jellyfish");
-  js::io::Config config = js::experiments::default_config(e);
-  std::string name = "built-in jellyfish";
-  if (!v.scene_path.empty()) {
-    const js::io::Config scene = js::io::Config::load(v.scene_path);
-    if (scene.has("scene") && scene.string("scene") != "jellyfish") {
-      throw js::InputError(v.scene_path + ": `view` shows jellyfish scenes (scene = \"jellyfish\"), not '" +
-                           scene.string("scene") + "'");
-    }
-    config.merge(scene);
-    name = v.scene_path;
-  }
-  for (const std::string& s : v.sets) config.set(s);
-  const js::jellyfish::SwimSettings settings = js::experiments::read_swim_settings(config);
+  const js::io::Config config = js::scene::load_jellyfish_scene(v.scene_path, v.sets);
+  const js::jellyfish::SwimSettings settings = js::scene::read_swim_settings(config);
+  const std::string name = v.scene_path.empty() ? "built-in jellyfish" : v.scene_path;
   auto& o = v.options;
   o.scene_name = name;
   o.field = v.field == "speed" ? js::viewer::FieldShown::speed : js::viewer::FieldShown::vorticity;
@@ -269,6 +267,8 @@ int main(int argc, char** argv) {
   auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
                                               "(every parameter, its default and meaning)");
   scenes->add_option("name", show_name, "Scene or experiment to print");
+  bool reference = false;
+  scenes->add_flag("--reference", reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
 
   try {
     app.parse(argc, argv);
@@ -297,6 +297,10 @@ int main(int argc, char** argv) {
       }
       if (threads > 0) exp_opts.shorthands.emplace_back("run.threads", std::to_string(threads));
       return run_experiment(js::experiments::find_experiment(exp_name), std::nullopt, exp_opts);
+    }
+    if (reference) {
+      std::cout << js::scene::parameters_reference();
+      return 0;
     }
     return list_definitions(show_name);
   } catch (const js::InputError& e) {

@@ -9,6 +9,7 @@
 //    response to a point force, pressure included). This is backward Euler for the stiff
 //    elastic–fluid exchange; on the default jellyfish it stays stable at 8 times the explicit
 //    scheme's largest step (docs/jellyfish.md).
+#include <numbers>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,8 +44,8 @@ struct CouplingSettings {
   Kernel kernel = Kernel::bilinear;
   Scheme scheme = Scheme::semi_implicit;
   double safety_factor = 0.5;      ///< τ: Δt = τ·min(eq. 4.8, eq. 4.9), then clamped below
-  double max_time_step_s = 0.01;   ///< upper bound on Δt (also used while the fluid is at rest)
-  double min_time_step_s = 1e-7;   ///< a smaller Δt means the run cannot go on
+  double max_time_step_s = 1.0 / 60.0;  ///< upper bound on Δt (also used while the fluid is at rest)
+  double min_time_step_s = 1e-6;   ///< a smaller Δt means the run cannot go on
   double krylov_tolerance = 1e-6;  ///< relative residual of the semi-implicit GMRES solve
   int krylov_max_iterations = 200;
   Preconditioner preconditioner = Preconditioner::mobility;
@@ -58,9 +59,9 @@ struct CouplingSettings {
 
 /// Limits whose violation stops a run (thesis §8.1.4's two kinds of instability).
 struct StabilityLimits {
-  double max_speed_m_per_s = 5.0;  ///< numerical: fluid or point speed above this is a blow-up
-  double max_strain = 1.0;         ///< structural: |l/l_r − 1| of any linear spring
-  double max_bend_rad = 2.5;       ///< structural: |θ − θ_r| of any angular spring (a fold)
+  double max_speed_m_per_s = 2.0;  ///< numerical: fluid or point speed above this is a blow-up
+  double max_strain = 1.25;        ///< structural: |l/l_r − 1| of any linear spring
+  double max_bend_rad = 143.0 * std::numbers::pi / 180.0;  ///< structural: |θ − θ_r| of any angular spring (a fold)
 };
 
 /// Sets time-dependent parameters of the body (muscle rest lengths) for time t.

@@ -5,6 +5,7 @@
 #include "experiments/jellyfish_runs.hpp"
 #include "io/errors.hpp"
 #include "render/animation_outputs.hpp"
+#include "scene/render_settings.hpp"
 
 #include <cstdio>
 #include <unistd.h>
@@ -18,7 +19,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
   if (settings.school.empty())
     throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
                      "of type \"jellyfish\"");
-  render::PipelineSettings pipeline = render::pipeline_settings_from_config(ctx.config, "render");
+  render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
   pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
@@ -56,6 +57,7 @@ Experiment animation_experiment() {
   Experiment e{"animation", "The main job: the default jellyfish simulated and rendered as a 3D animation (`jellysim run`)",
                "experiments/animation.toml", prepare_animation};
   e.base_path = "scenes/jellyfish.toml";
+  e.renders = true;
   return e;
 }
 

@@ -2,6 +2,8 @@
 
 #include "io/embedded_data.hpp"
 #include "io/errors.hpp"
+#include "scene/jellyfish_scene.hpp"
+#include "scene/render_settings.hpp"
 
 #include <stdexcept>
 
@@ -62,12 +64,19 @@ std::string_view embedded_text(std::string_view path) {
   throw std::logic_error("embedded file missing from the build: " + std::string(path));
 }
 
+std::string definition_text(std::string_view path) {
+  // The jellyfish scene is its parameter table (scenes/jellyfish.toml is generated from it).
+  if (path == kJellyfishScenePath) return scene::jellyfish_scene().scene_toml();
+  return std::string(embedded_text(path));
+}
+
 io::Config default_config(const Experiment& experiment) {
-  io::Config own = io::Config::parse(embedded_text(experiment.definition_path), "built-in " + experiment.definition_path);
-  if (experiment.base_path.empty()) return own;
-  io::Config base = io::Config::parse(embedded_text(experiment.base_path), "built-in " + experiment.base_path);
-  if (!experiment.base_overlay_path.empty())
-    base.merge(io::Config::parse(embedded_text(experiment.base_overlay_path), "built-in " + experiment.base_overlay_path));
+  auto parse = [](const std::string& path) { return io::Config::parse(definition_text(path), "built-in " + path); };
+  io::Config own = parse(experiment.definition_path);
+  if (experiment.base_path.empty() && !experiment.renders) return own;
+  io::Config base = experiment.base_path.empty() ? scene::render_parameters().defaults() : parse(experiment.base_path);
+  if (!experiment.base_overlay_path.empty()) base.merge(parse(experiment.base_overlay_path));
+  if (experiment.renders && !experiment.base_path.empty()) base.extend(scene::render_parameters().defaults());
   base.extend(own);
   return base;
 }

@@ -37,6 +37,9 @@ struct Experiment {
   /// Optional embedded scene file laid over the base before the definition (like a user's scene
   /// file), e.g. "scenes/jellyfish-thesis.toml": the chapter 8 studies run on the thesis's tank.
   std::string base_overlay_path{};
+  /// The definition also has the [render] section of the 3D pipeline (scene/render_settings.hpp),
+  /// whose defaults come from its parameter table.
+  bool renders = false;
 };
 
 const std::vector<Experiment>& all_experiments();
@@ -46,6 +49,11 @@ const Experiment& find_experiment(const std::string& name);
 io::Config default_config(const Experiment& experiment);
 /// Text of an embedded file; throws std::logic_error when absent (a build error).
 std::string_view embedded_text(std::string_view path);
+/// The built-in jellyfish scene's path; its text is generated from the scene layer's parameter table.
+inline constexpr std::string_view kJellyfishScenePath = "scenes/jellyfish.toml";
+/// The text of a scene or experiment definition: the embedded file, or for the jellyfish scene the
+/// text generated from its parameter table.
+std::string definition_text(std::string_view path);
 
 /// Writes summary.json: status, version, command, key figures and the resolved configuration.
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,

@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the jellyfish commands (`jellysim simulate` and the chapter 8 jellyfish
-// experiments): reading a swim scene from its configuration, running it while writing per-frame
+// experiments): the output options, running a swim scene while writing per-frame
 // pictures and VTK files, and writing metrics, plots and summary figures.
 #include <nlohmann/json.hpp>
 
@@ -9,12 +9,11 @@
 #include "jellyfish/metrics.hpp"
 #include "jellyfish/swim_simulation.hpp"
 #include "render/field_picture.hpp"
+#include "scene/jellyfish_scene.hpp"
 
 namespace jellysim::experiments {
 
-/// Reads [tank], [jellyfish], [coupling], [stability], duration and output.frame_interval;
-/// throws InputError naming the field and its allowed range.
-jellyfish::SwimSettings read_swim_settings(const io::Config& c);
+using scene::read_swim_settings;  // the scene layer reads the scene (scene/jellyfish_scene.hpp)
 
 struct SwimOutputOptions {
   bool pictures = false;

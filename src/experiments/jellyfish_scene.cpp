@@ -1,4 +1,4 @@
-// The 2D jellyfish simulation (`jellysim simulate`, scene "jellyfish"): thesis Figure 8.21's scene
+// The 2D jellyfish simulation (`jellysim simulate`, scene "jellyfish"): the built-in scene
 // by default, with metrics per frame, fluid fields and a picture per frame (Figure 8.11 style).
 #include "experiments/experiment.hpp"
 #include "experiments/jellyfish_runs.hpp"
@@ -23,7 +23,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_jellyfish(const Context& ct
 }  // namespace
 
 Experiment jellyfish_experiment() {
-  return {"jellyfish", "2D jellyfish slice swimming in a grid fluid (thesis Fig. 8.21 scene; `jellysim simulate`)",
+  return {"jellyfish", "2D jellyfish slice swimming in a grid fluid (the resolved built-in scene; `jellysim simulate`)",
           "scenes/jellyfish.toml", prepare_jellyfish};
 }
 

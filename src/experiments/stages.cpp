@@ -9,6 +9,7 @@
 #include "geometry/synthetic_bell.hpp"
 #include "io/errors.hpp"
 #include "render/animation_outputs.hpp"
+#include "scene/render_settings.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -35,7 +36,7 @@ StagesSetup read_setup(const io::Config& c) {
   s.bell.tentacle_length_m = c.number("bell.tentacle_length", io::Range::positive());
   s.panel_width = static_cast<int>(c.integer("output.panel_width", 64, 2048));
   s.panel_height = static_cast<int>(c.integer("output.panel_height", 64, 2048));
-  s.pipeline = render::pipeline_settings_from_config(c, "render");
+  s.pipeline = scene::read_render_settings(c);
   s.bell.max_contraction = s.pipeline.geometry.noise.max_contraction;
   return s;
 }
@@ -90,6 +91,7 @@ Experiment stages_experiment() {
   e.name = "stages";
   e.description = "Figure 8.19: each stage from 2D slice to noisy 3D jellyfish, expanded and contracted (stages.png)";
   e.definition_path = "experiments/stages.toml";
+  e.renders = true;
   e.prepare = [](const Context& ctx) {
     const StagesSetup setup = read_setup(ctx.config);
     const io::Config config = ctx.config;

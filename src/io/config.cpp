@@ -10,7 +10,6 @@
 #include <sstream>
 
 namespace jellysim::io {
-namespace {
 
 std::string format_number(double v) {
   std::ostringstream s;
@@ -18,6 +17,8 @@ std::string format_number(double v) {
   s << v;
   return s.str();
 }
+
+namespace {
 
 std::string type_name(toml::node_type t) {
   switch (t) {
@@ -124,7 +125,9 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::describe() const {
-  return std::string(min_open ? "(" : "[") + format_number(min) + ", " + format_number(max) + (max_open ? ")" : "]");
+  // An infinite bound is never allowed (contains() rejects it): its side is open.
+  const bool low_open = min_open || !std::isfinite(min), high_open = max_open || !std::isfinite(max);
+  return std::string(low_open ? "(" : "[") + format_number(min) + ", " + format_number(max) + (high_open ? ")" : "]");
 }
 
 struct Config::Impl {

@@ -17,6 +17,9 @@
 
 namespace jellysim::io {
 
+/// A number as error messages write it (10 significant digits).
+std::string format_number(double v);
+
 /// A closed or open interval used in range checks and error messages.
 struct Range {
   double min = -std::numeric_limits<double>::infinity();

@@ -6,6 +6,7 @@
 //    contraction function drives (eq. 7.5) with a neural phase delay per spring (§6.2, §7.1);
 //  * two tentacle strands hanging from the aperture, with linear and angular springs.
 // Units: metres, seconds; spring constants are per metre of slice depth (see docs/jellyfish.md).
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,21 +21,21 @@ enum class UmbrellaModel { angular, mesh };
 
 struct JellyfishSpec {
   // Shape (Fig. 8.21).
-  Vec2 aperture_centre_m{0.4, 0.4};   ///< centre of the aperture (bell opening)
+  Vec2 aperture_centre_m{0.12, 0.08};   ///< centre of the aperture (bell opening)
   double tilt_rad = 0.0;              ///< rotation of the swimming axis from +y, counter-clockwise
   double diameter_m = 0.04;
   double height_m = 0.028;
   double tentacle_length_m = 0.014;
   double thickness_m = 0.0015;        ///< umbrella thickness ϑ
-  double max_spacing_m = 0.0066;      ///< marker spacing bound (Peskin: ≤ Δx/2)
+  double max_spacing_m = 0.00125;     ///< marker spacing bound (Peskin: ≤ Δx/2 of the built-in tank)
   int min_segments_per_side = 6;
   UmbrellaModel model = UmbrellaModel::angular;
 
   // Material (eq. 7.1, κ_l = λ A / l_r; forces per metre of depth).
-  double bell_modulus_pa = 1.186e5;       ///< bell mesoglea λ
+  double bell_modulus_pa = 1.186e6;       ///< bell mesoglea λ
   double muscle_modulus_pa = 4.0e5;       ///< circumferential muscle λ
-  double bending_factor = 1.0;            ///< κ_θ = factor · κ_l l_r² for the umbrella's angular springs
-  double tentacle_volume_fraction = 0.01; ///< tentacle springs represent 1/100 of the umbrella's volume
+  double bending_factor = 10.0;           ///< κ_θ = factor · κ_l l_r² for the umbrella's angular springs
+  double tentacle_volume_fraction = 3.0;  ///< tentacle springs' volume relative to the umbrella's (thesis: 0.01)
   double tentacle_bending_factor = 1.0;   ///< κ_θ = factor · κ_l · l_r² for the tentacles' angular springs
   double point_mass_kg = 1e-3;            ///< per marker (used only by the fluid-free model)
 
@@ -52,9 +53,9 @@ struct JellyfishSpec {
   // side of the umbrella are driven like muscles, their rest angles bent further inward in step
   // with the contraction, so that side strokes harder and the jellyfish turns.
   bool steering = false;
-  Vec2 steer_target_m{};                  ///< the point to turn toward
-  double steer_gain = 1.0;                ///< extra bend of the side per radian of heading error
-  double steer_max_bend_rad = 0.35;       ///< largest extra bend of a side (shared by its joints)
+  Vec2 steer_target_m{0.12, 0.28};        ///< the point to turn toward
+  double steer_gain = 0.3;                ///< extra bend of the side per radian of heading error
+  double steer_max_bend_rad = 20.0 * std::numbers::pi / 180.0;  ///< largest extra bend of a side (shared by its joints)
   double steer_damping_cycles = 1.5;      ///< derivative time: heading change per cycle is weighed by this
 
   int noise_seed = 1;                     ///< the individual's noise seed for rendering (§7.3)

@@ -27,20 +27,22 @@ enum class MirrorSymmetry {
   mirror,     ///< always; a scene that is not its own mirror image is an error
 };
 
+/// Defaults here and in JellyfishSpec, CouplingSettings and StabilityLimits are the built-in scene's
+/// (scene/jellyfish_scene.cpp; the test SceneParameters.SpecDefaultsAreTheBuiltInScene).
 struct TankSpec {
-  double width_m = 0.8;
-  double height_m = 0.8;
-  int cells_x = 60;
-  int cells_y = 60;
-  std::string solver = "semi-lagrangian";
-  std::string pressure_solver = "multigrid";
+  double width_m = 0.24;
+  double height_m = 0.32;
+  int cells_x = 96;
+  int cells_y = 128;
+  std::string solver = "eulerian";
+  std::string pressure_solver = "fft";
   double pressure_tolerance = 1e-8;  ///< relative max-norm residual of every pressure solve
   double viscosity_m2_per_s = 1.304e-5;
   double density_kg_per_m3 = 1000.0;
   fluid::Boundaries boundaries = fluid::Boundaries::all(fluid::BoundaryType::free_slip);
-  int tracers_per_side = 0;  ///< marker particles on a lattice over the whole tank (Figs 8.11/8.12)
+  int tracers_per_side = 40;  ///< marker particles on a lattice over the whole tank (Figs 8.11/8.12)
   Vec2 current_m_per_s{};    ///< uniform background flow at t = 0 (with inflow/outflow or periodic sides)
-  MirrorSymmetry symmetry = MirrorSymmetry::none;
+  MirrorSymmetry symmetry = MirrorSymmetry::automatic;
   /// While the mirror symmetry is kept, solve only the east half of the tank, with a symmetry
   /// plane (a free-slip wall) on the centre line: half the fluid. Needs an even cells_x.
   bool half_tank = true;
@@ -53,7 +55,7 @@ struct SwimSettings {
   double obstacle_max_displacement_m = 0.0;  ///< tether stretch that stops the run; 0: one cell
   coupling::CouplingSettings coupling;
   coupling::StabilityLimits limits;
-  double duration_s = 10.0;
+  double duration_s = 10.0 / 0.7;  ///< ten contraction cycles at 0.7 Hz
   double frame_interval_s = 1.0 / 30.0;
 
   /// The first jellyfish (the one metrics.csv describes); throws when there is none.

@@ -35,25 +35,6 @@ std::string frame_name(std::size_t k, const char* extension) {
   return buf;
 }
 
-geometry::NoiseSettings read_noise(const io::Config& c, const std::string& p) {
-  geometry::NoiseSettings n;
-  n.seed = static_cast<std::uint64_t>(c.integer(p + "seed", 0, std::numeric_limits<std::int64_t>::max()));
-  n.structural_weight = c.number(p + "structural_weight", io::Range::non_negative());
-  n.compression_weight = c.number(p + "compression_weight", io::Range::non_negative());
-  n.unstructured_weight = c.number(p + "unstructured_weight", io::Range::non_negative());
-  n.structural_frequency = c.number(p + "structural_frequency", io::Range::closed(0.0, 1000.0));
-  n.structural_absolute = c.choice(p + "structural_form", {"abs", "sin"}) == "abs";
-  n.compression_frequency = c.number(p + "compression_frequency", io::Range::closed(0.0, 1000.0));
-  n.max_contraction = c.number(p + "max_contraction", {0.0, 1.0, true, true});
-  n.latitude_frequency = c.number(p + "latitude_frequency", io::Range::closed(0.0, 1000.0));
-  n.longitude_frequency = c.number(p + "longitude_frequency", io::Range::closed(0.0, 1000.0));
-  n.time_frequency_hz = c.number(p + "time_frequency", io::Range::closed(0.0, 1000.0));
-  n.length_scale_m = c.number(p + "length_scale", io::Range::non_negative());
-  n.tentacles = c.boolean(p + "tentacles");
-  n.bend_shell = c.boolean(p + "bend_shell");
-  return n;
-}
-
 /// The umbrella's vertex range (part "umbrella" uses vertices from 0) — the camera frames it.
 Vec3 umbrella_centre(const geometry::FrameGeometry& g) {
   Vec3 lo = g.mesh.positions[0], hi = lo;
@@ -163,44 +144,6 @@ void write_viewer(const PipelineSettings& s, const std::string& glb, const io::O
 
 std::filesystem::path default_viewer_script() {
   return std::filesystem::path(JELLYSIM_WEB_DIR) / "dist" / "jellyfish-viewer.js";
-}
-
-PipelineSettings pipeline_settings_from_config(const io::Config& c, const std::string& section) {
-  const std::string p = section + ".";
-  PipelineSettings s;
-  geometry::GeometrySettings& g = s.geometry;
-  s.width_px = static_cast<int>(c.integer(p + "width", 16, 8192));
-  s.height_px = static_cast<int>(c.integer(p + "height", 16, 8192));
-  s.fps = c.number(p + "fps", {0.0, 240.0, true, false});
-  g.latitude_samples = static_cast<int>(c.integer(p + "latitude_samples", 5, 100001));
-  if (g.latitude_samples % 2 == 0)
-    throw InputError("field '" + p + "latitude_samples' = " + std::to_string(g.latitude_samples) + " must be odd");
-  g.disc_points = static_cast<int>(c.integer(p + "disc_points", 8, 100000));
-  g.tentacle_samples = static_cast<int>(c.integer(p + "tentacle_samples", 2, 100000));
-  g.tentacle_count = static_cast<int>(c.integer(p + "tentacle_count", 1, 10000));
-  g.tube_sides = static_cast<int>(c.integer(p + "tube_sides", 3, 64));
-  g.tentacle_radius_m = c.number(p + "tentacle_radius", io::Range::positive());
-  g.interpolant = geometry::parse_interpolant(c.choice(p + "interpolant", {"thesis", "catmull-rom"}), p + "interpolant");
-  g.noise = read_noise(c, p + "noise.");
-  s.camera_distance = c.number(p + "camera_distance", io::Range::positive());
-  s.camera_elevation_deg = c.number(p + "camera_elevation_deg", io::Range::closed(-89.0, 89.0));
-  s.camera_azimuth_deg = c.number(p + "camera_azimuth_deg", io::Range::closed(-360.0, 360.0));
-  s.camera_follow = c.number(p + "camera_follow", {0.0, 1.0, true, false});
-  s.fov_y_deg = c.number(p + "fov_deg", io::Range::closed(5.0, 120.0));
-  s.obstacle_depth_m = c.number(p + "obstacle_depth", {0.0, 100.0, true, false});
-  s.style.umbrella[3] = c.number(p + "umbrella_opacity", io::Range::closed(0.0, 1.0));
-  s.style.tentacles[3] = c.number(p + "tentacle_opacity", io::Range::closed(0.0, 1.0));
-  s.style.rim = c.number(p + "rim", io::Range::closed(0.0, 1.0));
-  s.png_frames = c.boolean(p + "png_frames");
-  s.video = c.boolean(p + "video");
-  s.glb = c.boolean(p + "glb");
-  s.obj = c.boolean(p + "obj");
-  s.ply = c.boolean(p + "ply");
-  s.viewer = c.boolean(p + "viewer");
-  if (s.viewer && !s.glb) throw InputError("field '" + p + "viewer' = true needs '" + p + "glb' = true");
-  s.viewer_script = default_viewer_script();
-  geometry::validate_geometry_settings(g);
-  return s;
 }
 
 nlohmann::ordered_json AnimationOutputs::figures() const {

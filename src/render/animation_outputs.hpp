@@ -12,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/extrapolation.hpp"
-#include "io/config.hpp"
 #include "io/output.hpp"
 #include "jellyfish/slice_frame.hpp"
 #include "render/gl_renderer.hpp"
@@ -45,10 +44,6 @@ struct PipelineSettings {
 /// The default viewer bundle: <source dir>/web/dist/jellyfish-viewer.js (built by `npm run build`
 /// in web/, see docs/rendering.md).
 std::filesystem::path default_viewer_script();
-
-/// Reads `<section>.*` and `<section>.noise.*` (see experiments/stages.toml for every field, its
-/// unit and range) with io::Config getters: a bad value is an InputError naming the field and range.
-PipelineSettings pipeline_settings_from_config(const io::Config& config, const std::string& section = "render");
 
 /// Called after each frame: (frames done, frames in all).
 using FrameProgress = std::function<void(std::size_t done, std::size_t total)>;

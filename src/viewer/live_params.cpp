@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "io/errors.hpp"
+#include "scene/live_parameters.hpp"
 
 namespace jellysim::viewer {
 
@@ -23,30 +24,13 @@ LiveParams LiveParams::from(const jellyfish::SwimSettings& settings, const geome
   return p;
 }
 
-ParamRange param_range(const std::string& name) {
-  if (name == "frequency") return {0.0, 5.0, true};
-  if (name == "gamma") return {0.0, 1.0, true};
-  if (name == "stiffness") return {0.0, 100.0, true};
-  if (name == "viscosity") return {0.0, 1e-2, false};
-  if (name == "speed") return {0.0, 10.0, true};
-  if (name.starts_with("noise.")) return {0.0, 5.0, false};
-  throw InputError("unknown parameter '" + name + "'");
-}
-
 std::string check_param(const std::string& name, int index, double value, std::size_t jellyfish_count) {
-  const ParamRange r = param_range(name);
-  const bool per_jellyfish = name == "frequency" || name == "gamma" || name == "stiffness";
-  if (per_jellyfish && (index < 0 || static_cast<std::size_t>(index) >= jellyfish_count)) {
+  const scene::LiveParameter& p = scene::live_parameter(name);
+  if (p.per_jellyfish && (index < 0 || static_cast<std::size_t>(index) >= jellyfish_count)) {
     return "jellyfish " + std::to_string(index) + " does not exist (the scene has " +
            std::to_string(jellyfish_count) + ")";
   }
-  const bool low_ok = r.min_open ? value > r.min : value >= r.min;
-  if (!std::isfinite(value) || !low_ok || value > r.max) {
-    std::ostringstream why;
-    why << name << " must be in " << (r.min_open ? "(" : "[") << r.min << ", " << r.max << "], got " << value;
-    return why.str();
-  }
-  return "";
+  return scene::check_live_value(p, value);
 }
 
 void apply_param(const std::string& name, int index, double value, LiveParams& params,

@@ -27,14 +27,7 @@ struct LiveParams {
   static LiveParams from(const jellyfish::SwimSettings& settings, const geometry::NoiseSettings& noise, double speed);
 };
 
-/// Allowed range of a settable parameter (input_script.hpp names), inclusive.
-struct ParamRange {
-  double min, max;
-  bool min_open;  ///< the lower bound itself is not allowed
-};
-ParamRange param_range(const std::string& name);
-
-/// "" when `set name [index] value` is allowed for `jellyfish_count` jellyfish, else why not.
+/// "" when `set name [index] value` is allowed (the ranges are scene/live_parameters.hpp's) for `jellyfish_count` jellyfish, else why not.
 std::string check_param(const std::string& name, int index, double value, std::size_t jellyfish_count);
 
 /// Applies one parameter to `params` and, for simulation parameters, to `sim`; throws

@@ -11,6 +11,7 @@
 
 #include "geometry/obstacle_mesh.hpp"
 #include "io/errors.hpp"
+#include "scene/live_parameters.hpp"
 #include "viewer/field_image.hpp"
 #include "viewer/input_script.hpp"
 #include "viewer/live_params.hpp"
@@ -317,6 +318,13 @@ void Viewer::draw_status() {
   if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
 }
 
+/// A slider over the live parameter `name`'s slider range (scene/live_parameters.hpp).
+bool live_slider(const char* label, const char* name, float* value, const char* format = "%.3f") {
+  const scene::Slider& s = scene::live_parameter(name).parameter->slider;
+  return ImGui::SliderFloat(label, value, static_cast<float>(s.min), static_cast<float>(s.max), format,
+                            s.logarithmic ? ImGuiSliderFlags_Logarithmic : ImGuiSliderFlags_None);
+}
+
 void Viewer::draw_jellyfish_controls() {
   if (sim_->jellyfish_count() == 0) return;
   int selected = static_cast<int>(scene_.selected());
@@ -329,11 +337,9 @@ void Viewer::draw_jellyfish_controls() {
   float frequency = static_cast<float>(j.frequency_hz), gamma = static_cast<float>(j.gamma),
         stiffness = static_cast<float>(j.stiffness_scale);
   const int index = static_cast<int>(i);
-  if (ImGui::SliderFloat("frequency (Hz)", &frequency, 0.1f, 3.0f)) set_param("frequency", index, frequency);
-  if (ImGui::SliderFloat("gamma", &gamma, 0.3f, 1.0f)) set_param("gamma", index, gamma);
-  if (ImGui::SliderFloat("stiffness x", &stiffness, 0.25f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
-    set_param("stiffness", index, stiffness);
-  }
+  if (live_slider("frequency (Hz)", "frequency", &frequency)) set_param("frequency", index, frequency);
+  if (live_slider("gamma", "gamma", &gamma)) set_param("gamma", index, gamma);
+  if (live_slider("stiffness x", "stiffness", &stiffness, "%.2f")) set_param("stiffness", index, stiffness);
   if (j.steer_target_m) {
     ImGui::Text("steering to (%.3f, %.3f)", j.steer_target_m->x, j.steer_target_m->y);
     ImGui::SameLine();
@@ -356,9 +362,7 @@ void Viewer::draw_controls() {
   ImGui::SameLine();
   if (ImGui::Button(recorder_.active() ? "Stop recording (v)" : "Record (v)")) handle_key("v");
   float speed = static_cast<float>(params_.speed);
-  if (ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
-    set_param("speed", 0, speed);
-  }
+  if (live_slider("speed", "speed", &speed, "%.2fx")) set_param("speed", 0, speed);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int shown = field_ == FieldShown::speed ? 0 : 1;
     ImGui::RadioButton("speed", &shown, 0);
@@ -372,17 +376,15 @@ void Viewer::draw_controls() {
   if (ImGui::CollapsingHeader("Jellyfish", ImGuiTreeNodeFlags_DefaultOpen)) draw_jellyfish_controls();
   if (ImGui::CollapsingHeader("Fluid", ImGuiTreeNodeFlags_DefaultOpen)) {
     float nu = static_cast<float>(params_.viscosity_m2_per_s);
-    if (ImGui::SliderFloat("viscosity", &nu, 1e-6f, 1e-3f, "%.2e", ImGuiSliderFlags_Logarithmic)) {
-      set_param("viscosity", 0, nu);
-    }
+    if (live_slider("viscosity", "viscosity", &nu, "%.2e")) set_param("viscosity", 0, nu);
   }
   if (ImGui::CollapsingHeader("3D noise weights", ImGuiTreeNodeFlags_DefaultOpen)) {
     geometry::NoiseSettings& n = params_.noise;
     float w[3] = {static_cast<float>(n.structural_weight), static_cast<float>(n.compression_weight),
                   static_cast<float>(n.unstructured_weight)};
-    if (ImGui::SliderFloat("structural", &w[0], 0.0f, 0.2f)) set_param("noise.structural", 0, w[0]);
-    if (ImGui::SliderFloat("compression", &w[1], 0.0f, 1.0f)) set_param("noise.compression", 0, w[1]);
-    if (ImGui::SliderFloat("unstructured", &w[2], 0.0f, 2.0f)) set_param("noise.unstructured", 0, w[2]);
+    if (live_slider("structural", "noise.structural", &w[0])) set_param("noise.structural", 0, w[0]);
+    if (live_slider("compression", "noise.compression", &w[1])) set_param("noise.compression", 0, w[1]);
+    if (live_slider("unstructured", "noise.unstructured", &w[2])) set_param("noise.unstructured", 0, w[2]);
   }
   if (ImGui::CollapsingHeader("Mouse")) {
     ImGui::TextWrapped(

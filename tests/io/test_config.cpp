@@ -50,7 +50,7 @@ TEST(Config, OutOfRangeNamesFieldValueAndRange) {
   const std::string msg = error_of([&] { c.number("bar.length", Range::positive()); });
   EXPECT_NE(msg.find("bar.length"), std::string::npos) << msg;
   EXPECT_NE(msg.find("-1"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("(0, inf]"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(0, inf)"), std::string::npos) << msg;
   c.set("bar.segments=0");
   EXPECT_NE(error_of([&] { c.integer("bar.segments", 1, 100); }).find("[1, 100]"), std::string::npos);
 }

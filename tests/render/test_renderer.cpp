@@ -14,6 +14,7 @@
 #include "render/animation_outputs.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/video.hpp"
+#include "scene/render_settings.hpp"
 
 namespace jellysim::render {
 namespace {
@@ -153,12 +154,10 @@ TEST(Renderer, BadSizeIsAnInputError) {
   EXPECT_THROW(OffscreenRenderer(4, 4), InputError);
 }
 
-io::Config stages_config() {
-  return io::Config::parse(experiments::embedded_text("experiments/stages.toml"), "stages.toml");
-}
+io::Config stages_config() { return experiments::default_config(experiments::find_experiment("stages")); }
 
 TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
-  const PipelineSettings s = pipeline_settings_from_config(stages_config());
+  const PipelineSettings s = scene::read_render_settings(stages_config());
   EXPECT_EQ(s.width_px, 640);
   EXPECT_EQ(s.geometry.latitude_samples, 65);
   EXPECT_DOUBLE_EQ(s.geometry.noise.structural_weight, 0.01875);
@@ -168,7 +167,7 @@ TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
     c.set(bad);
     const std::string field = std::string(bad).substr(0, std::string(bad).find('='));
     try {
-      pipeline_settings_from_config(c);
+      scene::read_render_settings(c);
       ADD_FAILURE() << bad << " accepted";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
@@ -178,7 +177,7 @@ TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
 
 TEST(Pipeline, WritesEveryPromisedFile) {
   REQUIRE_OFFSCREEN_GL();
-  PipelineSettings s = pipeline_settings_from_config(stages_config());
+  PipelineSettings s = scene::read_render_settings(stages_config());
   s.width_px = 96;
   s.height_px = 72;
   s.geometry.latitude_samples = 21;

@@ -1,0 +1,408 @@
+#include "scene/jellyfish_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "io/errors.hpp"
+#include "io/output.hpp"
+
+namespace jellysim::scene {
+
+namespace {
+
+using io::Range;
+constexpr double kDegree = std::numbers::pi / 180.0;
+const Range kPositive = Range::positive();
+const Range kNonNegative = Range::non_negative();
+const Range kAny{};
+
+fluid::BoundaryType read_boundary(const std::string& name) { return *fluid::boundary_type_from_string(name); }
+
+using namespace param;
+
+const char* const kPreamble =
+    "# The built-in jellyfish: thesis Figure 8.21's 4 cm bell (§7.1, §8.2.4), resolved by 16 fluid cells\n"
+    "# across its diameter, in a 24 cm × 32 cm tank with free-slip walls (wide and tall enough that a tank\n"
+    "# twice as wide or twice as tall changes the distance swum by less than 0.2 %, docs/jellyfish.md).\n"
+    "# The thesis's own coarse tank (80 cm, 60 × 60 cells: 3 cells across the bell) is\n"
+    "# scenes/jellyfish-thesis.toml. SI units throughout.\n"
+    "# The thesis gives lengths in cm and ν = 0.1304 without units; we read it as cm²/s\n"
+    "# (1.304e-5 m²/s), which gives the Reynolds numbers of small jellyfish (docs/jellyfish.md).\n"
+    "# This file is generated from the parameter table (src/scene/jellyfish_scene.cpp):\n"
+    "#   jellysim scenes jellyfish > scenes/jellyfish.toml\n"
+    "# Each comment gives the unit, the allowed values and the meaning; docs/parameters.md has them all.\n"
+    "# More things in the tank, as [[objects]] tables (docs/scenes.md):\n"
+    "#   type = \"jellyfish\": another jellyfish; any [jellyfish] field overrides the one below, e.g.\n"
+    "#                       position, tilt_deg, diameter, frequency, phase, noise_seed, steering.\n"
+    "#   type = \"circle\" (centre, radius), \"box\" (centre, size, angle_deg) or \"polygon\" (points =\n"
+    "#   [x0, y0, x1, y1, ...] or file = \"outline.txt\"): a rigid obstacle held by stiff tethers\n"
+    "#   (stiffness, N/m per marker), optionally moving: velocity = [vx, vy], amplitude = [ax, ay],\n"
+    "#   frequency (p(t) = p0 + v t + a sin 2πft).\n";
+
+ParameterTable make_jellyfish_scene() {
+  std::vector<Parameter> p{
+      {"scene", Type::text, "\"jellyfish\"", "", {}, {}, 0, "the scene kind"},
+      number("duration", "14.285714285714286", "s", kPositive, "simulated time: 10 contraction cycles at 0.7 Hz"),
+      {"objects", Type::tables, "[]", "", {}, {}, 0, "more jellyfish and rigid obstacles, as [[objects]] tables (docs/scenes.md)"},
+
+      number("tank.width", "0.24", "m", kPositive, "six bell diameters"),
+      number("tank.height", "0.32", "m", kPositive, "tank height"),
+      {"tank.cells", Type::integers, "[96, 128]", "", Range::closed(4, 4096), {}, 2,
+       "fluid cells along x and y [nx, ny]: 2.5 mm, 16 across the bell"},
+      choice("tank.solver", "eulerian", {"semi-lagrangian", "eulerian"},
+             "eulerian (§4.1) or semi-lagrangian (Stam, §4.2: more diffusive, docs/jellyfish.md)"),
+      choice("tank.pressure_solver", "fft", {"multigrid", "sor", "direct", "fft"},
+             "fft is exact and fastest on uniform grids; direct: sparse Cholesky"),
+      number("tank.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
+             "relative max-norm residual of each pressure solve"),
+      number("tank.viscosity", "1.304e-5", "m²/s", kNonNegative, "kinematic viscosity ν", {1e-6, 1e-3, true}),
+      number("tank.density", "1000.0", "kg/m³", kPositive, "density ρ"),
+      {"tank.boundaries", Type::choices, "[\"free-slip\", \"free-slip\", \"free-slip\", \"free-slip\"]", "", {},
+       {"no-slip", "free-slip", "outflow", "inflow", "periodic"}, 4, "sides [west, east, south, north] (§7.1)"},
+      vec2("tank.inflow_velocity", "[0.0, 0.0]", "m/s", kAny, "velocity of the sides of type \"inflow\""),
+      integer("tank.tracers_per_side", "40", 0, 1000, "marker particles on a lattice (Figs 8.11/8.12); 0: none"),
+      vec2("tank.current", "[0.0, 0.0]", "m/s", kAny,
+           "uniform background flow at the start (pair with inflow/outflow or periodic sides)"),
+      choice("tank.symmetry", "auto", {"auto", "mirror", "none"},
+             "auto: keep the mirror symmetry of a scene that is its own mirror image about the centre line "
+             "(docs/jellyfish.md); mirror: insist; none"),
+      boolean("tank.half_tank", "true",
+              "while the symmetry is kept, solve only the east half (a symmetry plane on the centre line)"),
+
+      boolean("jellyfish.enabled", "true",
+              "false: no jellyfish here (e.g. flow past obstacles); [[objects]] may still add some"),
+      vec2("jellyfish.position", "[0.12, 0.08]", "m", kAny, "aperture centre, inside the tank"),
+      number("jellyfish.tilt_deg", "0.0", "°", Range::closed(-360, 360), "swimming direction from +y, counter-clockwise"),
+      number("jellyfish.diameter", "0.04", "m", kPositive, "bell diameter (Fig. 8.21)"),
+      number("jellyfish.height", "0.028", "m", kPositive, "bell height"),
+      number("jellyfish.tentacle_length", "0.014", "m", kNonNegative, "tentacle length"),
+      number("jellyfish.thickness", "0.0015", "m", kPositive,
+             "ϑ: 5.4 % of the height (§7.2); Fig. 8.21's 0.0002 is a rendering value"),
+      choice("jellyfish.model", "angular", {"angular", "mesh"},
+             "angular: string of points with angular springs (Fig. 7.2 right); mesh: Fig. 7.2 left"),
+      number("jellyfish.spacing", "0.0", "m", kNonNegative, "marker spacing; 0: Peskin's rule, half a fluid cell"),
+      integer("jellyfish.min_segments_per_side", "6", 2, 1000, "at least this many umbrella springs from aperture to apex"),
+      number("jellyfish.bell_modulus", "1.186e6", "Pa", kPositive,
+             "λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
+      number("jellyfish.muscle_modulus", "4.0e5", "Pa", kNonNegative, "λ of the circumferential muscle (§7.1)"),
+      number("jellyfish.bending_factor", "10.0", "", kNonNegative, "umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
+      number("jellyfish.tentacle_volume_fraction", "3.0", "", kPositive,
+             "tentacle springs' volume relative to the umbrella's (thesis: 0.01, stretches > 100 %)"),
+      number("jellyfish.tentacle_bending_factor", "1.0", "", kNonNegative,
+             "tentacle angular springs: κ_θ = factor · κ_l · l_r²"),
+      number("jellyfish.frequency", "0.7", "Hz", Range{0.0, 5.0, true, false}, "contractions per second", {0.1, 3.0}),
+      number("jellyfish.gamma", "0.56", "", Range{0.0, 1.0, true, false}, "contracted rest length fraction γ (eq. 7.5)", {0.3, 1.0}),
+      choice("jellyfish.contraction", "hermite", jellyfish::contraction_shape_names(), "contraction function (§7.1, Fig. 6.10)"),
+      number("jellyfish.contract_fraction", "0.3", "", Range{0.0, 1.0, true, true},
+             "part of the cycle spent contracting (Fig. 6.10)"),
+      number("jellyfish.aperture_expansion_exponent", "2.0", "", Range::closed(1.0, 10.0),
+             "aperture springs re-expand more slowly (Fig. 7.5); 1: all alike"),
+      number("jellyfish.neural_delay", "0.03", "s", kNonNegative, "activation delay from the margin to the apex (§6.2)"),
+      boolean("jellyfish.controller", "false", "eq. 7.2 closed-loop controller instead of the open-loop function"),
+      number("jellyfish.controller_alpha", "2.0", "", kPositive, "α of eq. 7.2"),
+      number("jellyfish.trochoid_skew", "0.6", "", Range{0.0, 1.0, false, true}, "λ of the trochoid contraction function"),
+      number("jellyfish.phase", "0.0", "cycles", Range::closed(-1000, 1000), "phase offset"),
+      integer("jellyfish.noise_seed", "1", 1, 2147483647,
+              "the individual (§7.3): `jellysim run` uses render.noise.seed + noise_seed − 1"),
+      boolean("jellyfish.steering", "false", "turn toward steer_target by bending one side harder (beyond the thesis)"),
+      vec2("jellyfish.steer_target", "[0.12, 0.28]", "m", kAny, "the point to steer toward"),
+      number("jellyfish.steer_gain", "0.3", "1/rad", kNonNegative,
+             "extra bend of the steering side per radian of heading error"),
+      number("jellyfish.steer_max_bend_deg", "20.0", "°", Range::closed(0.0, 90.0),
+             "largest extra bend of the steering side, shared by its joints"),
+      number("jellyfish.steer_damping", "1.5", "cycles", kNonNegative,
+             "the last cycle's turn, times this, is subtracted from the heading error"),
+
+      choice("coupling.scheme", "semi-implicit", {"semi-implicit", "explicit"},
+             "semi-implicit (backward Euler exchange, GMRES) or explicit (thesis)"),
+      choice("coupling.kernel", "bilinear", {"bilinear", "peskin4"},
+             "bilinear (thesis: nearest four samples) or Peskin's 4-point kernel"),
+      number("coupling.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "τ on the CFL/viscous limits of eqs. 4.8–4.9"),
+      number("coupling.max_dt", "0.016666666666666666", "s", kPositive,
+             "largest step: two per 1/30 s frame (docs/jellyfish.md: the step study)"),
+      number("coupling.min_dt", "1e-6", "s", kPositive, "a smaller stable step stops the run"),
+      number("coupling.krylov_tolerance", "1e-6", "", Range{0.0, 1.0, true, true},
+             "relative residual of the semi-implicit solve"),
+      integer("coupling.krylov_max_iterations", "200", 1, 100000, "GMRES iterations per step at most"),
+      choice("coupling.preconditioner", "mobility", {"mobility", "none"},
+             "mobility: dense marker-space solve (one GMRES iteration per step); none: plain GMRES"),
+      number("coupling.mobility_rebuild", "0.0", "cells", Range::closed(0.0, 10.0),
+             "a marker may move this far before the mobility matrix is rebuilt (0: every step)"),
+
+      number("stability.max_speed", "2.0", "m/s", kPositive, "faster fluid or markers = numerical instability"),
+      number("stability.max_strain", "1.25", "", kPositive,
+             "|l / l_r − 1| of any spring (muscles: uncontracted length) = structural; the margin segment peaks "
+             "at 1.0–1.1 in sound runs at small steps (docs/jellyfish.md)"),
+      number("stability.max_bend_deg", "143.0", "°", Range{0.0, 180.0, true, false},
+             "|θ − θ_r| of any joint = structural (a fold)"),
+
+      number("output.frame_interval", "0.03333333333333333", "s", kPositive,
+             "time between recorded frames, at most the duration"),
+      boolean("output.pictures", "true", "a 2D picture per frame (frames/slice_NNNN.png)"),
+      integer("output.picture_every", "1", 1, 1000000, "draw every n-th frame"),
+      choice("output.picture_quantity", "vorticity", {"vorticity", "speed"}, "what the pictures colour"),
+      number("output.picture_zoom", "6.0", "bell diameters", kNonNegative, "width of the picture; 0: the whole tank"),
+      boolean("output.vtk", "true", "fluid fields, tracers and the body per frame (frames/*.vti, *.vtp, jellyfish.pvd)"),
+  };
+  return ParameterTable("jellyfish", kPreamble, std::move(p));
+}
+
+/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
+jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::TankSpec& t) {
+  const Reader r(c, jellyfish_scene());
+  jellyfish::JellyfishSpec j;
+  j.aperture_centre_m = r.vec2("jellyfish.position");
+  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
+        j.aperture_centre_m.y < t.height_m))
+    throw InputError("field 'jellyfish.position' = [" + io::format_double(j.aperture_centre_m.x) + ", " +
+                     io::format_double(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     io::format_double(t.width_m) + "] x [0, " + io::format_double(t.height_m) + "]");
+  j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
+  j.diameter_m = r.number("jellyfish.diameter");
+  j.height_m = r.number("jellyfish.height");
+  j.tentacle_length_m = r.number("jellyfish.tentacle_length");
+  j.thickness_m = r.number("jellyfish.thickness");
+  j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
+                                                                       : jellyfish::UmbrellaModel::angular;
+  const double spacing = r.number("jellyfish.spacing");
+  j.max_spacing_m = spacing > 0 ? spacing : jellyfish::peskin_spacing(t);
+  j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
+  j.bell_modulus_pa = r.number("jellyfish.bell_modulus");
+  j.muscle_modulus_pa = r.number("jellyfish.muscle_modulus");
+  j.bending_factor = r.number("jellyfish.bending_factor");
+  j.tentacle_volume_fraction = r.number("jellyfish.tentacle_volume_fraction");
+  j.tentacle_bending_factor = r.number("jellyfish.tentacle_bending_factor");
+  j.frequency_hz = r.number("jellyfish.frequency");
+  j.gamma = r.number("jellyfish.gamma");
+  j.profile.shape = *jellyfish::contraction_shape_from_string(
+      r.choice("jellyfish.contraction"));
+  j.profile.contract_fraction = r.number("jellyfish.contract_fraction");
+  j.aperture_expansion_exponent = r.number("jellyfish.aperture_expansion_exponent");
+  j.neural_delay_s = r.number("jellyfish.neural_delay");
+  j.closed_loop = r.boolean("jellyfish.controller");
+  j.controller_alpha = r.number("jellyfish.controller_alpha");
+  j.profile.trochoid_skew = r.number("jellyfish.trochoid_skew");
+  j.phase_cycles = r.number("jellyfish.phase");
+
+  j.steering = r.boolean("jellyfish.steering");
+  j.steer_target_m = r.vec2("jellyfish.steer_target");
+  j.steer_gain = r.number("jellyfish.steer_gain");
+  j.steer_max_bend_rad = r.number("jellyfish.steer_max_bend_deg") * kDegree;
+  j.steer_damping_cycles = r.number("jellyfish.steer_damping");
+  j.noise_seed = static_cast<int>(r.integer("jellyfish.noise_seed"));
+  try {
+    jellyfish::validate(j);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  return j;
+}
+
+/// Polygon vertices from a text file: one "x y" or "x,y" pair (metres) per line; '#' comments.
+std::vector<Vec2> read_polygon_file(const std::string& path, const std::string& where) {
+  std::ifstream in(path);
+  if (!in) throw InputError(where + ": cannot read polygon file '" + path + "'");
+  std::vector<Vec2> points;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    Vec2 p;
+    if (!(fields >> p.x)) continue;  // blank line
+    std::string extra;
+    if (!(fields >> p.y) || (fields >> extra) || !std::isfinite(p.x) || !std::isfinite(p.y))
+      throw InputError(where + ": polygon file '" + path + "' line " + std::to_string(number) +
+                       ": expected two numbers \"x y\"");
+    points.push_back(p);
+  }
+  return points;
+}
+
+/// Fails on fields an object of this type does not have.
+void require_known_fields(const io::Config& o, const std::vector<std::string>& allowed, const std::string& where) {
+  for (const std::string& k : o.keys())
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(where + ": unknown field '" + k + "' (allowed: " + list + ")");
+    }
+}
+
+jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where) {
+  jellyfish::ObstacleSpec spec;
+  spec.name = where;
+  std::vector<std::string> allowed{"type", "stiffness", "velocity", "amplitude", "frequency"};
+  if (type == "circle") {
+    spec.shape = jellyfish::ObstacleShape::circle;
+    allowed.insert(allowed.end(), {"centre", "radius"});
+  } else if (type == "box") {
+    spec.shape = jellyfish::ObstacleShape::box;
+    allowed.insert(allowed.end(), {"centre", "size", "angle_deg"});
+  } else {
+    spec.shape = jellyfish::ObstacleShape::polygon;
+    allowed.insert(allowed.end(), {"points", "file"});
+  }
+  require_known_fields(o, allowed, where);
+  auto required_vec2 = [&](const char* key) {
+    if (!o.has(key)) throw InputError(where + ": missing field '" + key + "'");
+    return o.vec2(key);
+  };
+  if (spec.shape != jellyfish::ObstacleShape::polygon) spec.centre_m = required_vec2("centre");
+  if (spec.shape == jellyfish::ObstacleShape::circle) {
+    if (!o.has("radius")) throw InputError(where + ": missing field 'radius'");
+    spec.radius_m = o.number("radius", io::Range::positive());
+  }
+  if (spec.shape == jellyfish::ObstacleShape::box) {
+    spec.size_m = required_vec2("size");
+    if (o.has("angle_deg")) spec.angle_rad = o.number("angle_deg", io::Range::closed(-360, 360)) * kDegree;
+  }
+  if (spec.shape == jellyfish::ObstacleShape::polygon) {
+    if (o.has("points") == o.has("file"))
+      throw InputError(where + ": a polygon needs exactly one of 'points' = [x0, y0, x1, y1, ...] or 'file'");
+    if (o.has("file")) {
+      spec.vertices_m = read_polygon_file(o.string("file"), where);
+    } else {
+      const std::vector<double> xy = o.numbers("points");
+      if (xy.size() % 2 != 0) throw InputError(where + ": field 'points' needs an even count [x0, y0, x1, y1, ...]");
+      for (std::size_t k = 0; k + 1 < xy.size(); k += 2) spec.vertices_m.push_back({xy[k], xy[k + 1]});
+    }
+  }
+  if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", io::Range::positive());
+  if (o.has("velocity")) spec.motion.velocity_m_per_s = o.vec2("velocity");
+  if (o.has("amplitude")) spec.motion.amplitude_m = o.vec2("amplitude");
+  if (o.has("frequency")) spec.motion.frequency_hz = o.number("frequency", io::Range::non_negative());
+  try {
+    jellyfish::validate(spec);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  return spec;
+}
+
+/// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template) and
+/// rigid obstacles (circle, box, polygon), each with an optional prescribed path.
+void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
+  const std::size_t count = c.array_size("objects");
+  for (std::size_t k = 0; k < count; ++k) {
+    io::Config o = c.element("objects", k);
+    const std::string where = "objects[" + std::to_string(k) + "]";
+    if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box or polygon)");
+    std::string type;
+    try {
+      type = o.choice("type", {"jellyfish", "circle", "box", "polygon"});
+    } catch (const InputError& e) {
+      throw InputError(where + ": unknown object " + e.what());
+    }
+    const std::string name = where + " (" + type + ")";
+    try {
+      if (type == "jellyfish") {
+        o.erase("type");
+        io::Config jc = c;
+        jc.merge(o.nested_under("jellyfish"));
+        s.school.push_back(read_jellyfish(jc, s.tank));
+      } else {
+        s.obstacles.push_back(read_obstacle(o, type, name));
+      }
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      throw InputError(message.rfind(name, 0) == 0 ? message : name + ": " + message);
+    }
+  }
+}
+
+}  // namespace
+
+jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
+  const Reader r(c, jellyfish_scene());
+  r.validate_all();
+  jellyfish::SwimSettings s;
+  s.duration_s = r.number("duration");
+  s.frame_interval_s = r.number("output.frame_interval");
+  if (s.frame_interval_s > s.duration_s)
+    throw InputError("field 'output.frame_interval' = " + io::format_double(s.frame_interval_s) +
+                     " is out of range (0, duration = " + io::format_double(s.duration_s) + "]");
+
+  jellyfish::TankSpec& t = s.tank;
+  t.width_m = r.number("tank.width");
+  t.height_m = r.number("tank.height");
+  const auto cells = r.integers("tank.cells");
+  t.cells_x = static_cast<int>(cells[0]);
+  t.cells_y = static_cast<int>(cells[1]);
+  t.solver = r.choice("tank.solver");
+  t.pressure_solver = r.choice("tank.pressure_solver");
+  t.pressure_tolerance = r.number("tank.pressure_tolerance");
+  t.viscosity_m2_per_s = r.number("tank.viscosity");
+  t.density_kg_per_m3 = r.number("tank.density");
+  const auto sides = r.choices("tank.boundaries");
+  const Vec2 inflow = r.vec2("tank.inflow_velocity");
+  fluid::BoundaryCondition* b[4] = {&t.boundaries.west, &t.boundaries.east, &t.boundaries.south, &t.boundaries.north};
+  for (int k = 0; k < 4; ++k) {
+    b[k]->type = read_boundary(sides[static_cast<std::size_t>(k)]);
+    b[k]->velocity_m_per_s = b[k]->type == fluid::BoundaryType::inflow ? inflow : Vec2{};
+  }
+  try {
+    t.boundaries.validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("field 'tank.boundaries': ") + e.what());
+  }
+  t.tracers_per_side = static_cast<int>(r.integer("tank.tracers_per_side"));
+  t.current_m_per_s = r.vec2("tank.current");
+  const std::string symmetry = r.choice("tank.symmetry");
+  t.half_tank = r.boolean("tank.half_tank");
+  t.symmetry = symmetry == "auto"     ? jellyfish::MirrorSymmetry::automatic
+               : symmetry == "mirror" ? jellyfish::MirrorSymmetry::mirror
+                                      : jellyfish::MirrorSymmetry::none;
+
+  if (r.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
+  read_objects(c, s);
+
+  coupling::CouplingSettings& k = s.coupling;
+  k.scheme = *coupling::scheme_from_string(r.choice("coupling.scheme"));
+  k.kernel = *coupling::kernel_from_string(r.choice("coupling.kernel"));
+  k.safety_factor = r.number("coupling.safety_factor");
+  k.max_time_step_s = r.number("coupling.max_dt");
+  k.min_time_step_s = r.number("coupling.min_dt");
+  k.krylov_tolerance = r.number("coupling.krylov_tolerance");
+  k.krylov_max_iterations = static_cast<int>(r.integer("coupling.krylov_max_iterations"));
+  k.preconditioner = *coupling::preconditioner_from_string(r.choice("coupling.preconditioner"));
+  k.mobility_rebuild_cells = r.number("coupling.mobility_rebuild");
+
+  s.limits.max_speed_m_per_s = r.number("stability.max_speed");
+  s.limits.max_strain = r.number("stability.max_strain");
+  s.limits.max_bend_rad = r.number("stability.max_bend_deg") * kDegree;
+  try {
+    jellyfish::validate_layout(s);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("scene layout: ") + e.what());
+  }
+  if (t.symmetry == jellyfish::MirrorSymmetry::mirror)
+    if (const std::string problem = jellyfish::mirror_symmetry_problem(s); !problem.empty())
+      throw InputError("field 'tank.symmetry' is \"mirror\", but the scene is not its own mirror image about the "
+                       "tank's centre line: " + problem + " (use \"auto\" or \"none\")");
+  return s;
+}
+
+
+const ParameterTable& jellyfish_scene() {
+  static const ParameterTable table = make_jellyfish_scene();
+  return table;
+}
+
+io::Config load_jellyfish_scene(const std::string& path, const std::vector<std::string>& sets) {
+  io::Config config = jellyfish_scene().defaults();
+  if (!path.empty()) {
+    const io::Config scene = io::Config::load(path);
+    if (scene.has("scene") && scene.string("scene") != "jellyfish")
+      throw InputError(path + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
+                       scene.string("scene") + "'");
+    config.merge(scene);
+  }
+  for (const std::string& s : sets) config.set(s);
+  return config;
+}
+
+}  // namespace jellysim::scene

@@ -1,0 +1,132 @@
+#include "scene/render_settings.hpp"
+
+#include <limits>
+
+#include "io/errors.hpp"
+
+namespace jellysim::scene {
+namespace {
+
+using io::Range;
+
+using namespace param;
+
+ParameterTable make_render_parameters() {
+  const Range frequency = Range::closed(0.0, 1000.0);
+  std::vector<Parameter> p{
+      integer("render.width", "640", 16, 8192, "pixels (frames and video)"),
+      integer("render.height", "480", 16, 8192, "pixels"),
+      number("render.fps", "30.0", "1/s", Range{0.0, 240.0, true, false}, "video frames per second"),
+      integer("render.latitude_samples", "65", 5, 100001, "rendering-model samples per umbrella surface (odd)"),
+      integer("render.disc_points", "64", 8, 100000, "points around each disc, j_max"),
+      integer("render.tentacle_samples", "40", 2, 100000, "samples along each tentacle"),
+      integer("render.tentacle_count", "16", 1, 10000, "3D tentacles around the rim per opposing pair of slice tentacles"),
+      integer("render.tube_sides", "6", 3, 64, "tentacle tube cross-section"),
+      number("render.tentacle_radius", "0.00025", "m", Range::positive(), "at the root (tapers to 30 % at the tip)"),
+      choice("render.interpolant", "catmull-rom", {"thesis", "catmull-rom"}, "eq. 7.8 as printed, or Catmull–Rom"),
+      number("render.camera_distance", "2.6", "first-frame mesh extents", Range::positive(), "camera distance"),
+      number("render.camera_elevation_deg", "12.0", "°", Range::closed(-89.0, 89.0), "camera elevation"),
+      number("render.camera_azimuth_deg", "25.0", "°", Range::closed(-360.0, 360.0), "camera azimuth"),
+      number("render.camera_follow", "0.25", "", Range{0.0, 1.0, true, false},
+             "fraction of the way to the jellyfish per frame"),
+      number("render.fov_deg", "40.0", "°", Range::closed(5.0, 120.0), "vertical field of view"),
+      number("render.obstacle_depth", "0.12", "m", Range{0.0, 100.0, true, false},
+             "obstacles are drawn as prisms this long across the slice"),
+      number("render.umbrella_opacity", "0.35", "", Range::closed(0.0, 1.0),
+             "base alpha of the translucent umbrella (rim adds more at grazing angles)"),
+      number("render.tentacle_opacity", "0.75", "", Range::closed(0.0, 1.0), "alpha of the tentacles"),
+      number("render.rim", "0.55", "", Range::closed(0.0, 1.0), "rim opacity/brightness at grazing angles"),
+      boolean("render.png_frames", "true", "frames/frame_0000.png …"),
+      boolean("render.video", "true", "jellyfish.mp4 (ffmpeg, H.264)"),
+      boolean("render.glb", "true", "jellyfish.glb (glTF 2.0, morph-target animation)"),
+      boolean("render.obj", "false", "meshes/frame_0000.obj … (about 1.5 MB per frame)"),
+      boolean("render.ply", "false", "meshes/frame_0000.ply …"),
+      boolean("render.viewer", "true", "viewer.html (needs glb)"),
+
+      integer("render.noise.seed", "1", 0, 2147483647,
+              "the individual (0 = Perlin's reference permutation)"),
+      number("render.noise.structural_weight", "0.01875", "", Range::non_negative(),
+             "w_s of Figure 8.19 (fractions of the noise length)", {0.0, 0.2}),
+      number("render.noise.compression_weight", "0.125", "", Range::non_negative(), "w_c of Figure 8.19", {0.0, 1.0}),
+      number("render.noise.unstructured_weight", "0.45", "", Range::non_negative(), "w_u of Figure 8.19", {0.0, 2.0}),
+      number("render.noise.structural_frequency", "9.0", "", frequency, "f of eqs. 7.10/7.11"),
+      choice("render.noise.structural_form", "abs", {"abs", "sin"}, "abs: eq. 7.11 |sin fσ| (Fig. 8.19); sin: eq. 7.10"),
+      number("render.noise.compression_frequency", "9.0", "", frequency, "ridge frequency in eq. 7.14 (as printed: 1)"),
+      number("render.noise.max_contraction", "0.56", "", Range{0.0, 1.0, true, true}, "γ (§7.1)"),
+      number("render.noise.latitude_frequency", "2.0", "", frequency, "eq. 7.18: Q_P(2 d_i, 8 d_j, 0.01 t)"),
+      number("render.noise.longitude_frequency", "8.0", "", frequency, "eq. 7.18's 8"),
+      number("render.noise.time_frequency", "0.3", "1/s", frequency, "eq. 7.18's 0.01 per frame at 30 frames/s"),
+      number("render.noise.length_scale", "0.0", "m", Range::non_negative(),
+             "the length the noise equations are in; 0: the first frame's bell height"),
+      boolean("render.noise.tentacles", "true", "unstructured noise on the tentacles too"),
+      boolean("render.noise.bend_shell", "true",
+              "unstructured noise moves both surfaces together (false: each along its own normal)"),
+  };
+  return ParameterTable("render", "", std::move(p));
+}
+
+geometry::NoiseSettings read_noise(const Reader& r) {
+  geometry::NoiseSettings n;
+  n.seed = static_cast<std::uint64_t>(r.integer("render.noise.seed"));
+  n.structural_weight = r.number("render.noise.structural_weight");
+  n.compression_weight = r.number("render.noise.compression_weight");
+  n.unstructured_weight = r.number("render.noise.unstructured_weight");
+  n.structural_frequency = r.number("render.noise.structural_frequency");
+  n.structural_absolute = r.choice("render.noise.structural_form") == "abs";
+  n.compression_frequency = r.number("render.noise.compression_frequency");
+  n.max_contraction = r.number("render.noise.max_contraction");
+  n.latitude_frequency = r.number("render.noise.latitude_frequency");
+  n.longitude_frequency = r.number("render.noise.longitude_frequency");
+  n.time_frequency_hz = r.number("render.noise.time_frequency");
+  n.length_scale_m = r.number("render.noise.length_scale");
+  n.tentacles = r.boolean("render.noise.tentacles");
+  n.bend_shell = r.boolean("render.noise.bend_shell");
+  return n;
+}
+
+}  // namespace
+
+const ParameterTable& render_parameters() {
+  static const ParameterTable table = make_render_parameters();
+  return table;
+}
+
+render::PipelineSettings read_render_settings(const io::Config& c) {
+  const Reader r(c, render_parameters());
+  render::PipelineSettings s;
+  geometry::GeometrySettings& g = s.geometry;
+  s.width_px = static_cast<int>(r.integer("render.width"));
+  s.height_px = static_cast<int>(r.integer("render.height"));
+  s.fps = r.number("render.fps");
+  g.latitude_samples = static_cast<int>(r.integer("render.latitude_samples"));
+  if (g.latitude_samples % 2 == 0)
+    throw InputError("field 'render.latitude_samples' = " + std::to_string(g.latitude_samples) + " must be odd");
+  g.disc_points = static_cast<int>(r.integer("render.disc_points"));
+  g.tentacle_samples = static_cast<int>(r.integer("render.tentacle_samples"));
+  g.tentacle_count = static_cast<int>(r.integer("render.tentacle_count"));
+  g.tube_sides = static_cast<int>(r.integer("render.tube_sides"));
+  g.tentacle_radius_m = r.number("render.tentacle_radius");
+  g.interpolant = geometry::parse_interpolant(r.choice("render.interpolant"), "render.interpolant");
+  g.noise = read_noise(r);
+  s.camera_distance = r.number("render.camera_distance");
+  s.camera_elevation_deg = r.number("render.camera_elevation_deg");
+  s.camera_azimuth_deg = r.number("render.camera_azimuth_deg");
+  s.camera_follow = r.number("render.camera_follow");
+  s.fov_y_deg = r.number("render.fov_deg");
+  s.obstacle_depth_m = r.number("render.obstacle_depth");
+  s.style.umbrella[3] = r.number("render.umbrella_opacity");
+  s.style.tentacles[3] = r.number("render.tentacle_opacity");
+  s.style.rim = r.number("render.rim");
+  s.png_frames = r.boolean("render.png_frames");
+  s.video = r.boolean("render.video");
+  s.glb = r.boolean("render.glb");
+  s.obj = r.boolean("render.obj");
+  s.ply = r.boolean("render.ply");
+  s.viewer = r.boolean("render.viewer");
+  if (s.viewer && !s.glb) throw InputError("field 'render.viewer' = true needs 'render.glb' = true");
+  s.viewer_script = render::default_viewer_script();
+  geometry::validate_geometry_settings(g);
+  return s;
+}
+
+}  // namespace jellysim::scene
