@@ -2,10 +2,10 @@
 //  - BM_SwingingBarStep: steps per second of the Figure 8.1 bar for every integrator (fixed dt = 0.01).
 //  - BM_StiffBarWork: force evaluations needed by backward Euler (fixed steps) and Dormand–Prince
 //    (adaptive) to reach a given accuracy on the bar with κ_l × 100, against a tight reference.
-#include "elastic/bar.hpp"
-#include "elastic/elastic_system.hpp"
-#include "ode/integrator.hpp"
-#include "sim/time_stepping.hpp"
+#include "jellysim/elastic/bar.hpp"
+#include "jellysim/elastic/elastic_system.hpp"
+#include "jellysim/ode/integrator.hpp"
+#include "jellysim/sim/time_stepping.hpp"
 
 #include <benchmark/benchmark.h>
 

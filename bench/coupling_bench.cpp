@@ -14,10 +14,10 @@
 // real time), steps per simulated second and Krylov (GMRES) iterations per step.
 #include <benchmark/benchmark.h>
 
-#include "coupling/mobility.hpp"
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "jellyfish/swim_simulation.hpp"
+#include "jellysim/coupling/mobility.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
 
 namespace {
 

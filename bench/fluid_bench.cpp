@@ -14,11 +14,11 @@
 #include <memory>
 #include <vector>
 
-#include "fluid/experiments_taylor_green.hpp"
-#include "fluid/fft_poisson.hpp"
-#include "fluid/fluid_solver.hpp"
-#include "fluid/poisson.hpp"
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/fluid/fft_poisson.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/poisson.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 
 namespace {
 

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/extrapolation.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "render/gl_renderer.hpp"
+#include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/render/gl_renderer.hpp"
 
 namespace {
 

@@ -10,11 +10,11 @@
 //    fluid next to it (the machine's ceiling for two threads).
 //  - BM_PoolCeiling/job_us/phases: the best a two-thread WorkerPool can do here with jobs of a given
 //    length: perfectly divisible arithmetic on private data, one thread against two.
-#include "math/median.hpp"
-#include "sph/bodies.hpp"
-#include "sph/fluid.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/scene.hpp"
+#include "jellysim/math/median.hpp"
+#include "jellysim/sph/bodies.hpp"
+#include "jellysim/sph/fluid.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/scene.hpp"
 
 #include <benchmark/benchmark.h>
 

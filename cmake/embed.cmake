@@ -1,7 +1,7 @@
 file(GLOB FILES ${SRC_DIR}/scenes/*.toml ${SRC_DIR}/experiments/*.toml)
 list(SORT FILES)
 # Writes a C++ source holding every scene/experiment TOML file as a string, keyed by its relative path.
-set(body "#include \"io/embedded_data.hpp\"\nnamespace jellysim::io {\nconst std::vector<EmbeddedFile>& embedded_files() {\n  static const std::vector<EmbeddedFile> files = {\n")
+set(body "#include \"jellysim/experiments/embedded_data.hpp\"\nnamespace jellysim::io {\nconst std::vector<EmbeddedFile>& embedded_files() {\n  static const std::vector<EmbeddedFile> files = {\n")
 foreach(f IN LISTS FILES)
   file(READ ${f} content)
   file(RELATIVE_PATH rel ${SRC_DIR} ${f})

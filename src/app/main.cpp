@@ -1,14 +1,14 @@
 // The jellysim command line: thin layer over the library (see docs/cli.md).
 // Exit codes: 0 success, 1 failed run, 2 bad usage or input.
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "io/embedded_data.hpp"
-#include "io/errors.hpp"
-#include "scene/jellyfish_scene.hpp"
-#include "scene/reference.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/experiments/embedded_data.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/reference.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
-#include "viewer/viewer.hpp"
+#include "jellysim/viewer/viewer.hpp"
 
 #include <CLI/CLI.hpp>
 

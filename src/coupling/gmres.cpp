@@ -1,4 +1,4 @@
-#include "coupling/gmres.hpp"
+#include "jellysim/coupling/gmres.hpp"
 
 #include <algorithm>
 #include <cmath>

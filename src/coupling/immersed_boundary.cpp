@@ -1,4 +1,4 @@
-#include "coupling/immersed_boundary.hpp"
+#include "jellysim/coupling/immersed_boundary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "elastic/forces.hpp"
-#include "fluid/projection.hpp"
+#include "jellysim/elastic/forces.hpp"
+#include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::coupling {
 

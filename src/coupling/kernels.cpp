@@ -1,4 +1,4 @@
-#include "coupling/kernels.hpp"
+#include "jellysim/coupling/kernels.hpp"
 
 #include <algorithm>
 #include <cmath>

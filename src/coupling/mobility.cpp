@@ -1,10 +1,10 @@
-#include "coupling/mobility.hpp"
+#include "jellysim/coupling/mobility.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "fluid/poisson.hpp"
-#include "fluid/projection.hpp"
+#include "jellysim/fluid/poisson.hpp"
+#include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::coupling {
 

@@ -1,4 +1,4 @@
-#include "coupling/oval_membrane.hpp"
+#include "jellysim/coupling/oval_membrane.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "elastic/bar.hpp"
+#include "jellysim/elastic/bar.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
-#include "elastic/body.hpp"
+#include "jellysim/elastic/body.hpp"
 
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/forces.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,6 +1,6 @@
-#include "elastic/elastic_system.hpp"
+#include "jellysim/elastic/elastic_system.hpp"
 
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/forces.hpp"
 
 #include <algorithm>
 #include <stdexcept>

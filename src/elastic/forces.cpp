@@ -1,4 +1,4 @@
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/forces.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "elastic/mirror.hpp"
+#include "jellysim/elastic/mirror.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
 // The main job (`jellysim run`): the default jellyfish simulated in 2D (thesis §7.1, Fig. 8.21),
 // then extrapolated to a lit, noisy 3D animation (§7.2–7.4) written as MP4, glTF, PNG frames,
 // meshes and an HTML viewer, with the swimming metrics and summary.json.
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "io/errors.hpp"
-#include "render/animation_outputs.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/animation_outputs.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 #include <cstdio>
 #include <unistd.h>

@@ -1,9 +1,9 @@
 // Lid-driven cavity, thesis §8.1.3 and Figure 8.7, compared with Ghia, Ghia & Shin (1982).
-#include "experiments/experiment.hpp"
-#include "fluid/experiments_cavity.hpp"
-#include "io/errors.hpp"
-#include "io/vtk_fields.hpp"
-#include "render/field_picture.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/fluid/experiments_cavity.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/vtk_fields.hpp"
+#include "jellysim/render/field_picture.hpp"
 
 namespace jellysim::experiments {
 namespace {

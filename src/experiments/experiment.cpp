@@ -1,9 +1,9 @@
-#include "experiments/experiment.hpp"
+#include "jellysim/experiments/experiment.hpp"
 
-#include "io/embedded_data.hpp"
-#include "io/errors.hpp"
-#include "scene/jellyfish_scene.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/experiments/embedded_data.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 #include <stdexcept>
 

@@ -1,8 +1,8 @@
 // Fluid solver studies (thesis ch. 4): `taylor-green` (accuracy and order of convergence against the
 // exact solution) and `solver-cost` (time per step and per simulated second, and accuracy).
-#include "experiments/experiment.hpp"
-#include "fluid/experiments_taylor_green.hpp"
-#include "render/plot.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/render/plot.hpp"
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
-#include "experiments/integrator_order.hpp"
+#include "integrator_order.hpp"
 
-#include "elastic/elastic_system.hpp"
-#include "experiments/experiment.hpp"
-#include "io/errors.hpp"
-#include "render/plot.hpp"
+#include "jellysim/elastic/elastic_system.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/plot.hpp"
 
 #include <cmath>
 

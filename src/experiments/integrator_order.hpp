@@ -1,6 +1,6 @@
 #pragma once
 // Measured global order of convergence of the integrators on a problem with a known solution.
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 
 #include <string>
 #include <vector>

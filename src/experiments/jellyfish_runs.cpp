@@ -1,13 +1,13 @@
-#include "experiments/jellyfish_runs.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <numbers>
 
-#include "io/errors.hpp"
-#include "io/vtk_fields.hpp"
-#include "render/plot.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/vtk_fields.hpp"
+#include "jellysim/render/plot.hpp"
 
 namespace jellysim::experiments {
 

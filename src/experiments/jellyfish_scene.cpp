@@ -1,7 +1,7 @@
 // The 2D jellyfish simulation (`jellysim simulate`, scene "jellyfish"): the built-in scene
 // by default, with metrics per frame, fluid fields and a picture per frame (Figure 8.11 style).
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
 
 namespace jellysim::experiments {
 namespace {

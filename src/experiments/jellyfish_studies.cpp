@@ -9,12 +9,12 @@
 #include <mutex>
 #include <thread>
 
-#include "coupling/oval_membrane.hpp"
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "io/errors.hpp"
-#include "jellyfish/fluidless.hpp"
-#include "render/plot.hpp"
+#include "jellysim/coupling/oval_membrane.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/jellyfish/fluidless.hpp"
+#include "jellysim/render/plot.hpp"
 
 namespace jellysim::experiments {
 namespace {

@@ -1,6 +1,6 @@
-#include "experiments/sph_common.hpp"
+#include "sph_common.hpp"
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 #include <algorithm>
 #include <cmath>

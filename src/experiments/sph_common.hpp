@@ -2,11 +2,11 @@
 // Shared pieces of the particle-fluid experiments (thesis §8.1.1-8.1.2): reading their TOML
 // sections with range checks, building the Figure 8.1 bar, the fluid and the larva, recording
 // frames, and writing frames.csv and frame strips.
-#include "experiments/experiment.hpp"
-#include "render/plot.hpp"
-#include "sph/bodies.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/scene.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/render/plot.hpp"
+#include "jellysim/sph/bodies.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/scene.hpp"
 
 #include <string>
 #include <vector>

@@ -1,8 +1,8 @@
 // Particle fluids and collisions, thesis §8.1.1-8.1.2: `bar-hits-wall` (Figure 8.2),
 // `bar-hits-particle` (Figure 8.3), `sph-stream` (Figure 8.4), `mosquito-larva` (Figure 8.5) and
 // `integrator-cost` (Figure 8.6).
-#include "experiments/sph_common.hpp"
-#include "io/errors.hpp"
+#include "sph_common.hpp"
+#include "jellysim/core/errors.hpp"
 
 #include <chrono>
 #include <cmath>

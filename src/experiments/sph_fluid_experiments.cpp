@@ -1,7 +1,7 @@
 // SPH fluids with spring-mass bodies, thesis §8.1.2: `sph-stream` (Figure 8.4), `mosquito-larva`
 // (Figure 8.5) and `integrator-cost` (Figure 8.6).
-#include "experiments/sph_common.hpp"
-#include "io/errors.hpp"
+#include "sph_common.hpp"
+#include "jellysim/core/errors.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -4,12 +4,12 @@
 // `bell.source = "synthetic"` uses an analytic contracting bell instead.
 #include <chrono>
 
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "io/errors.hpp"
-#include "render/animation_outputs.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/animation_outputs.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::experiments {
 namespace {

@@ -1,10 +1,10 @@
 // Swinging elastic bar, thesis Figure 8.1 (§8.1.1): also the main job until the jellyfish exists.
-#include "elastic/bar.hpp"
-#include "elastic/elastic_system.hpp"
-#include "elastic/forces.hpp"
-#include "experiments/experiment.hpp"
-#include "io/errors.hpp"
-#include "render/plot.hpp"
+#include "jellysim/elastic/bar.hpp"
+#include "jellysim/elastic/elastic_system.hpp"
+#include "jellysim/elastic/forces.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/plot.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -7,10 +7,10 @@
 #include <future>
 #include <numbers>
 
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "io/errors.hpp"
-#include "render/plot.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/plot.hpp"
 
 namespace jellysim::experiments {
 namespace {

@@ -1,4 +1,4 @@
-#include "fluid/boundary.hpp"
+#include "jellysim/fluid/boundary.hpp"
 
 #include <stdexcept>
 #include <string>

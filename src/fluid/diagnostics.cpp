@@ -1,4 +1,4 @@
-#include "fluid/diagnostics.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
 
 #include <cmath>
 

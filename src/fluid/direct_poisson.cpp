@@ -1,4 +1,4 @@
-#include "fluid/direct_poisson.hpp"
+#include "jellysim/fluid/direct_poisson.hpp"
 
 #include <stdexcept>
 

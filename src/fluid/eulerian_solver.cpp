@@ -1,4 +1,4 @@
-#include "fluid/eulerian_solver.hpp"
+#include "jellysim/fluid/eulerian_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
-#include "fluid/experiments_cavity.hpp"
+#include "jellysim/fluid/experiments_cavity.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "fluid/fluid_solver.hpp"
-#include "fluid/projection.hpp"
-#include "fluid/tracers.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/projection.hpp"
+#include "jellysim/fluid/tracers.hpp"
 
 namespace jellysim::fluid {
 namespace {

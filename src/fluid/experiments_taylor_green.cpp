@@ -1,4 +1,4 @@
-#include "fluid/experiments_taylor_green.hpp"
+#include "jellysim/fluid/experiments_taylor_green.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "fluid/fluid_solver.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
 
 namespace jellysim::fluid {
 namespace {

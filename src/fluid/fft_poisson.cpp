@@ -1,4 +1,4 @@
-#include "fluid/fft_poisson.hpp"
+#include "jellysim/fluid/fft_poisson.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <fftw3.h>
 
-#include "fluid/double2.hpp"
+#include "double2.hpp"
 
 namespace jellysim::fluid {
 

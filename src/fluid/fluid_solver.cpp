@@ -1,12 +1,12 @@
-#include "fluid/fluid_solver.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "fluid/eulerian_solver.hpp"
-#include "fluid/semi_lagrangian_solver.hpp"
+#include "jellysim/fluid/eulerian_solver.hpp"
+#include "semi_lagrangian_solver.hpp"
 
 namespace jellysim::fluid {
 

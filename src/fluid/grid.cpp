@@ -1,4 +1,4 @@
-#include "fluid/grid.hpp"
+#include "jellysim/fluid/grid.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "fluid/mirror.hpp"
+#include "jellysim/fluid/mirror.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "fluid/projection.hpp"
+#include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::fluid {
 

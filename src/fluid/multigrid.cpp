@@ -1,4 +1,4 @@
-#include "fluid/multigrid.hpp"
+#include "jellysim/fluid/multigrid.hpp"
 
 #include <algorithm>
 #include <cmath>

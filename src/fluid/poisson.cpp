@@ -1,4 +1,4 @@
-#include "fluid/poisson.hpp"
+#include "jellysim/fluid/poisson.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "fluid/double2.hpp"
-#include "fluid/direct_poisson.hpp"
-#include "fluid/fft_poisson.hpp"
-#include "fluid/multigrid.hpp"
-#include "fluid/sor.hpp"
+#include "double2.hpp"
+#include "jellysim/fluid/direct_poisson.hpp"
+#include "jellysim/fluid/fft_poisson.hpp"
+#include "jellysim/fluid/multigrid.hpp"
+#include "jellysim/fluid/sor.hpp"
 
 namespace jellysim::fluid {
 namespace {

@@ -1,4 +1,4 @@
-#include "fluid/projection.hpp"
+#include "jellysim/fluid/projection.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "fluid/reference_data.hpp"
+#include "jellysim/fluid/reference_data.hpp"
 
 #include <cmath>
 #include <numbers>

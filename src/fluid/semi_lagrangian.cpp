@@ -1,6 +1,6 @@
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 
-#include "fluid/double2.hpp"
+#include "double2.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "fluid/semi_lagrangian_solver.hpp"
+#include "semi_lagrangian_solver.hpp"
 
 #include <limits>
 #include <stdexcept>
 
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 
 namespace jellysim::fluid {
 

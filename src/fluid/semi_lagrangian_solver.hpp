@@ -1,8 +1,8 @@
 #pragma once
 // Stam's semi-Lagrangian method, thesis §4.2.4: forces, implicit diffusion (eq. 4.17), optional
 // projection, back-traced advection, projection (eq. 4.14). Unconditionally stable.
-#include "fluid/fluid_solver.hpp"
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 
 namespace jellysim::fluid {
 

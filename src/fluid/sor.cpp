@@ -1,4 +1,4 @@
-#include "fluid/sor.hpp"
+#include "jellysim/fluid/sor.hpp"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
-#include "fluid/tracers.hpp"
+#include "jellysim/fluid/tracers.hpp"
 
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 
 namespace jellysim::fluid {
 

@@ -1,11 +1,11 @@
-#include "geometry/extrapolation.hpp"
+#include "jellysim/geometry/extrapolation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 namespace {

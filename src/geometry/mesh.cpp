@@ -1,9 +1,9 @@
-#include "geometry/mesh.hpp"
+#include "jellysim/geometry/mesh.hpp"
 
 #include <algorithm>
 #include <string>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 

@@ -1,4 +1,4 @@
-#include "geometry/obstacle_mesh.hpp"
+#include "jellysim/geometry/obstacle_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

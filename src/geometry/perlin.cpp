@@ -1,4 +1,4 @@
-#include "geometry/perlin.hpp"
+#include "jellysim/geometry/perlin.hpp"
 
 #include <cmath>
 

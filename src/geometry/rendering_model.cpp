@@ -1,10 +1,10 @@
-#include "geometry/rendering_model.hpp"
+#include "jellysim/geometry/rendering_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 namespace {

@@ -1,8 +1,8 @@
-#include "geometry/spline.hpp"
+#include "jellysim/geometry/spline.hpp"
 
 #include <stdexcept>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 

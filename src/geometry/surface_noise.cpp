@@ -1,4 +1,4 @@
-#include "geometry/surface_noise.hpp"
+#include "jellysim/geometry/surface_noise.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
-#include "geometry/synthetic_bell.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 namespace {

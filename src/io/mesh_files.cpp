@@ -1,4 +1,4 @@
-#include "io/mesh_files.hpp"
+#include "jellysim/io/mesh_files.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,8 +6,8 @@
 #include <cstring>
 #include <limits>
 
-#include "io/errors.hpp"
-#include "io/output.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 
 namespace jellysim::io {
 

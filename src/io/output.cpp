@@ -1,6 +1,6 @@
-#include "io/output.hpp"
+#include "jellysim/io/output.hpp"
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/vtk_fields.hpp"
+#include "jellysim/io/vtk_fields.hpp"
 
 #include <fstream>
 #include <iomanip>
@@ -6,8 +6,8 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "fluid/diagnostics.hpp"
-#include "fluid/projection.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::io {
 namespace {

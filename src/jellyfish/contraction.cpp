@@ -1,4 +1,4 @@
-#include "jellyfish/contraction.hpp"
+#include "jellysim/jellyfish/contraction.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "jellyfish/fluidless.hpp"
+#include "jellysim/jellyfish/fluidless.hpp"
 
 #include <cmath>
 

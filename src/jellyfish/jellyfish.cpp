@@ -1,11 +1,11 @@
-#include "jellyfish/jellyfish.hpp"
+#include "jellysim/jellyfish/jellyfish.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/forces.hpp"
 
 namespace jellysim::jellyfish {
 

@@ -1,4 +1,4 @@
-#include "jellyfish/metrics.hpp"
+#include "jellysim/jellyfish/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "jellyfish/obstacle.hpp"
+#include "jellysim/jellyfish/obstacle.hpp"
 
 #include <algorithm>
 #include <cmath>

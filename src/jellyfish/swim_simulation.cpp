@@ -1,4 +1,4 @@
-#include "jellyfish/swim_simulation.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "elastic/mirror.hpp"
-#include "fluid/mirror.hpp"
+#include "jellysim/elastic/mirror.hpp"
+#include "jellysim/fluid/mirror.hpp"
 
 namespace jellysim::jellyfish {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 
 namespace jellysim::ode {
 

@@ -1,4 +1,4 @@
-#include "ode/backward_euler.hpp"
+#include "jellysim/ode/backward_euler.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "ode/butcher_tableau.hpp"
+#include "jellysim/ode/butcher_tableau.hpp"
 
 #include <cmath>
 #include <numeric>

@@ -1,4 +1,4 @@
-#include "ode/derivative_cache.hpp"
+#include "jellysim/ode/derivative_cache.hpp"
 
 namespace jellysim::ode {
 

@@ -1,6 +1,6 @@
-#include "ode/explicit_runge_kutta.hpp"
+#include "jellysim/ode/explicit_runge_kutta.hpp"
 
-#include "ode/stage_sum.hpp"
+#include "jellysim/ode/stage_sum.hpp"
 
 #include <utility>
 

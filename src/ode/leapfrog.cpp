@@ -1,4 +1,4 @@
-#include "ode/leapfrog.hpp"
+#include "jellysim/ode/leapfrog.hpp"
 
 #include <stdexcept>
 

@@ -1,10 +1,10 @@
 // The by-name registry of integrators (one table, so names and factories cannot drift apart).
 #include <array>
 
-#include "ode/backward_euler.hpp"
-#include "ode/explicit_runge_kutta.hpp"
-#include "ode/integrator.hpp"
-#include "ode/leapfrog.hpp"
+#include "jellysim/ode/backward_euler.hpp"
+#include "jellysim/ode/explicit_runge_kutta.hpp"
+#include "jellysim/ode/integrator.hpp"
+#include "jellysim/ode/leapfrog.hpp"
 
 namespace jellysim::ode {
 

@@ -1,4 +1,4 @@
-#include "ode/stage_sum.hpp"
+#include "jellysim/ode/stage_sum.hpp"
 
 #include <array>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "render/animation_outputs.hpp"
+#include "jellysim/render/animation_outputs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,11 +10,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "geometry/obstacle_mesh.hpp"
-#include "geometry/rendering_model.hpp"
-#include "io/errors.hpp"
-#include "io/mesh_files.hpp"
-#include "render/video.hpp"
+#include "jellysim/geometry/obstacle_mesh.hpp"
+#include "jellysim/geometry/rendering_model.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/mesh_files.hpp"
+#include "jellysim/render/video.hpp"
 
 #ifndef JELLYSIM_WEB_DIR
 #define JELLYSIM_WEB_DIR "web"

@@ -1,4 +1,4 @@
-#include "render/field_picture.hpp"
+#include "jellysim/render/field_picture.hpp"
 
 #include <plplot/plstream.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fluid/diagnostics.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
 
 namespace jellysim::render {
 namespace {

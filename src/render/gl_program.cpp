@@ -1,6 +1,6 @@
-#include "render/gl_program.hpp"
+#include "jellysim/render/gl_program.hpp"
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::render {
 

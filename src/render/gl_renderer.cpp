@@ -1,4 +1,4 @@
-#include "render/gl_renderer.hpp"
+#include "jellysim/render/gl_renderer.hpp"
 
 #define EGL_EGLEXT_PROTOTYPES
 #include <EGL/egl.h>
@@ -17,8 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include "io/errors.hpp"
-#include "render/gl_program.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/gl_program.hpp"
 
 namespace jellysim::render {
 

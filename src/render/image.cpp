@@ -1,4 +1,4 @@
-#include "render/image.hpp"
+#include "jellysim/render/image.hpp"
 
 #include <png.h>
 
@@ -15,7 +15,7 @@
 #include <stb/stb_easy_font.h>
 #pragma GCC diagnostic pop
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::render {
 

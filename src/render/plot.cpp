@@ -1,6 +1,6 @@
-#include "render/plot.hpp"
+#include "jellysim/render/plot.hpp"
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 #include <plplot/plstream.h>
 

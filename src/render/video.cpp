@@ -1,4 +1,4 @@
-#include "render/video.hpp"
+#include "jellysim/render/video.hpp"
 
 #include <sys/wait.h>
 
@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "io/errors.hpp"
-#include "io/output.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 
 namespace jellysim::render {
 namespace {

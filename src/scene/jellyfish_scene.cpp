@@ -1,4 +1,4 @@
-#include "scene/jellyfish_scene.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "io/errors.hpp"
-#include "io/output.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::scene {
 
@@ -157,9 +156,9 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::Ta
   j.aperture_centre_m = r.vec2("jellyfish.position");
   if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
         j.aperture_centre_m.y < t.height_m))
-    throw InputError("field 'jellyfish.position' = [" + io::format_double(j.aperture_centre_m.x) + ", " +
-                     io::format_double(j.aperture_centre_m.y) + "] is outside the tank [0, " +
-                     io::format_double(t.width_m) + "] x [0, " + io::format_double(t.height_m) + "]");
+    throw InputError("field 'jellyfish.position' = [" + io::format_number(j.aperture_centre_m.x) + ", " +
+                     io::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     io::format_number(t.width_m) + "] x [0, " + io::format_number(t.height_m) + "]");
   j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
   j.diameter_m = r.number("jellyfish.diameter");
   j.height_m = r.number("jellyfish.height");
@@ -323,8 +322,8 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   s.duration_s = r.number("duration");
   s.frame_interval_s = r.number("output.frame_interval");
   if (s.frame_interval_s > s.duration_s)
-    throw InputError("field 'output.frame_interval' = " + io::format_double(s.frame_interval_s) +
-                     " is out of range (0, duration = " + io::format_double(s.duration_s) + "]");
+    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
+                     " is out of range (0, duration = " + io::format_number(s.duration_s) + "]");
 
   jellyfish::TankSpec& t = s.tank;
   t.width_m = r.number("tank.width");

@@ -1,10 +1,10 @@
-#include "scene/live_parameters.hpp"
+#include "jellysim/scene/live_parameters.hpp"
 
 #include <sstream>
 
-#include "io/errors.hpp"
-#include "scene/jellyfish_scene.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::scene {
 

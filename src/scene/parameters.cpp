@@ -1,4 +1,4 @@
-#include "scene/parameters.hpp"
+#include "jellysim/scene/parameters.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::scene {
 namespace {

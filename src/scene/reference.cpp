@@ -1,8 +1,8 @@
-#include "scene/reference.hpp"
+#include "jellysim/scene/reference.hpp"
 
-#include "scene/jellyfish_scene.hpp"
-#include "scene/live_parameters.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::scene {
 

@@ -1,8 +1,8 @@
-#include "scene/render_settings.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 #include <limits>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::scene {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/time_stepping.hpp"
+#include "jellysim/sim/time_stepping.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -1,6 +1,6 @@
-#include "sph/backward_euler.hpp"
+#include "jellysim/sph/backward_euler.hpp"
 
-#include "coupling/gmres.hpp"
+#include "jellysim/coupling/gmres.hpp"
 
 #include <cmath>
 #include <limits>

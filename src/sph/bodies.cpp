@@ -1,4 +1,4 @@
-#include "sph/bodies.hpp"
+#include "jellysim/sph/bodies.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "sph/collisions.hpp"
+#include "jellysim/sph/collisions.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sph/fluid.hpp"
+#include "jellysim/sph/fluid.hpp"
 
 #include <algorithm>
 #include <array>

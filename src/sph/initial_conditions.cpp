@@ -1,4 +1,4 @@
-#include "sph/initial_conditions.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
 
 #include <algorithm>
 #include <cmath>

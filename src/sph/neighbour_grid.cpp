@@ -1,4 +1,4 @@
-#include "sph/neighbour_grid.hpp"
+#include "jellysim/sph/neighbour_grid.hpp"
 
 #include <stdexcept>
 

@@ -1,6 +1,6 @@
-#include "sph/parallel.hpp"
+#include "jellysim/sph/parallel.hpp"
 
-#include "math/median.hpp"
+#include "jellysim/math/median.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
-#include "sph/scene.hpp"
+#include "jellysim/sph/scene.hpp"
 
-#include "elastic/forces.hpp"
-#include "ode/stage_sum.hpp"
+#include "jellysim/elastic/forces.hpp"
+#include "jellysim/ode/stage_sum.hpp"
 
 #include <algorithm>
 #include <cmath>

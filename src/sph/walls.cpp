@@ -1,4 +1,4 @@
-#include "sph/walls.hpp"
+#include "jellysim/sph/walls.hpp"
 
 namespace jellysim::sph {
 

@@ -1,4 +1,4 @@
-#include "viewer/field_image.hpp"
+#include "jellysim/viewer/field_image.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,9 +1,9 @@
-#include "viewer/gl.hpp"
+#include "gl.hpp"
 
 #include <cstring>
 
-#include "io/errors.hpp"
-#include "render/gl_program.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/gl_program.hpp"
 
 namespace jellysim::viewer::gl {
 

@@ -1,10 +1,10 @@
-#include "viewer/input_script.hpp"
+#include "input_script.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::viewer {
 

@@ -1,10 +1,10 @@
-#include "viewer/live_params.hpp"
+#include "live_params.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "io/errors.hpp"
-#include "scene/live_parameters.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/live_parameters.hpp"
 
 namespace jellysim::viewer {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/surface_noise.hpp"
-#include "jellyfish/swim_simulation.hpp"
+#include "jellysim/geometry/surface_noise.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
 
 namespace jellysim::viewer {
 

@@ -1,4 +1,4 @@
-#include "viewer/mesh_view.hpp"
+#include "mesh_view.hpp"
 
 #include <algorithm>
 #include <array>

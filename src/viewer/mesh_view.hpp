@@ -4,8 +4,8 @@
 // Blinn–Phong specular) and one directional light; translucent umbrellas over opaque tentacles.
 #include <vector>
 
-#include "geometry/mesh.hpp"
-#include "viewer/gl.hpp"
+#include "jellysim/geometry/mesh.hpp"
+#include "gl.hpp"
 
 namespace jellysim::viewer {
 

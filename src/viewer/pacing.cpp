@@ -1,4 +1,4 @@
-#include "viewer/pacing.hpp"
+#include "pacing.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "viewer/platform.hpp"
+#include "platform.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "io/errors.hpp"
-#include "viewer/gl.hpp"
+#include "jellysim/core/errors.hpp"
+#include "gl.hpp"
 
 namespace jellysim::viewer {
 

@@ -1,8 +1,8 @@
-#include "viewer/recorder.hpp"
+#include "recorder.hpp"
 
 #include <cstdio>
 
-#include "io/errors.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::viewer {
 

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "render/image.hpp"
-#include "render/video.hpp"
+#include "jellysim/render/image.hpp"
+#include "jellysim/render/video.hpp"
 
 namespace jellysim::viewer {
 

@@ -1,4 +1,4 @@
-#include "viewer/scene_panel.hpp"
+#include "scene_panel.hpp"
 
 #include <imgui.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "jellyfish/obstacle.hpp"
+#include "jellysim/jellyfish/obstacle.hpp"
 
 namespace jellysim::viewer {
 

@@ -4,9 +4,9 @@
 // mouse does there: drag a jellyfish or an obstacle, stir the water, set a steering target.
 #include <optional>
 
-#include "jellyfish/swim_simulation.hpp"
-#include "viewer/live_params.hpp"
-#include "viewer/platform.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
+#include "live_params.hpp"
+#include "platform.hpp"
 
 namespace jellysim::viewer {
 

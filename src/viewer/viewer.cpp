@@ -1,4 +1,4 @@
-#include "viewer/viewer.hpp"
+#include "jellysim/viewer/viewer.hpp"
 
 #include <imgui.h>
 #include <nlohmann/json.hpp>
@@ -9,17 +9,17 @@
 #include <fstream>
 #include <thread>
 
-#include "geometry/obstacle_mesh.hpp"
-#include "io/errors.hpp"
-#include "scene/live_parameters.hpp"
-#include "viewer/field_image.hpp"
-#include "viewer/input_script.hpp"
-#include "viewer/live_params.hpp"
-#include "viewer/mesh_view.hpp"
-#include "viewer/pacing.hpp"
-#include "viewer/platform.hpp"
-#include "viewer/recorder.hpp"
-#include "viewer/scene_panel.hpp"
+#include "jellysim/geometry/obstacle_mesh.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/viewer/field_image.hpp"
+#include "input_script.hpp"
+#include "live_params.hpp"
+#include "mesh_view.hpp"
+#include "pacing.hpp"
+#include "platform.hpp"
+#include "recorder.hpp"
+#include "scene_panel.hpp"
 
 namespace jellysim::viewer {
 

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "../cli_runner.hpp"
-#include "io/mesh_files.hpp"
+#include "jellysim/io/mesh_files.hpp"
 
 namespace cli = jellysim::testing;
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "coupling/kernels.hpp"
+#include "jellysim/coupling/kernels.hpp"
 
 namespace jellysim::coupling {
 namespace {

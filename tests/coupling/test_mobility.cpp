@@ -7,10 +7,10 @@
 #include <cmath>
 #include <random>
 
-#include "coupling/immersed_boundary.hpp"
-#include "coupling/mobility.hpp"
-#include "fluid/fluid_solver.hpp"
-#include "fluid/mirror.hpp"
+#include "jellysim/coupling/immersed_boundary.hpp"
+#include "jellysim/coupling/mobility.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/mirror.hpp"
 
 namespace jellysim::coupling {
 namespace {

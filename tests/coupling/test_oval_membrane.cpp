@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "coupling/gmres.hpp"
-#include "coupling/oval_membrane.hpp"
+#include "jellysim/coupling/gmres.hpp"
+#include "jellysim/coupling/oval_membrane.hpp"
 
 namespace jellysim::coupling {
 namespace {

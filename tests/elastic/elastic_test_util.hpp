@@ -1,7 +1,7 @@
 #pragma once
 // Shared helpers for the elastic tests: seeded random configurations and finite differences.
-#include "elastic/body.hpp"
-#include "math/vec2.hpp"
+#include "jellysim/elastic/body.hpp"
+#include "jellysim/math/vec2.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The swinging bar of thesis Figure 8.1.
-#include "elastic/bar.hpp"
+#include "jellysim/elastic/bar.hpp"
 #include "elastic_test_util.hpp"
 
 #include <gtest/gtest.h>

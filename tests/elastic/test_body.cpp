@@ -1,6 +1,6 @@
 // Body construction, energies and summed forces (thesis §2.1-2.3).
-#include "elastic/body.hpp"
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/body.hpp"
+#include "jellysim/elastic/forces.hpp"
 #include "elastic_test_util.hpp"
 
 #include <gtest/gtest.h>

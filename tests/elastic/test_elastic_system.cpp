@@ -1,5 +1,5 @@
 // The spring-mass body as an ODE system (eq. 2.19): derivative, sparse Jacobian, state packing.
-#include "elastic/elastic_system.hpp"
+#include "jellysim/elastic/elastic_system.hpp"
 #include "elastic_test_util.hpp"
 
 #include <Eigen/Dense>

@@ -1,5 +1,5 @@
 // Force laws of thesis §2.1-2.3: conservation, consistency with the energies, analytic Jacobians.
-#include "elastic/forces.hpp"
+#include "jellysim/elastic/forces.hpp"
 #include "elastic_test_util.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Mirror partners and the mirror-symmetric part of a spring body (elastic/mirror.hpp).
-#include "elastic/mirror.hpp"
+#include "jellysim/elastic/mirror.hpp"
 
 #include <gtest/gtest.h>
 

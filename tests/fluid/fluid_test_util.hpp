@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "fluid/boundary.hpp"
-#include "fluid/grid.hpp"
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/grid.hpp"
 
 namespace jellysim::fluid::testing {
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "fluid/boundary.hpp"
-#include "fluid/diagnostics.hpp"
-#include "fluid/tracers.hpp"
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/fluid/tracers.hpp"
 
 namespace jellysim::fluid {
 namespace {

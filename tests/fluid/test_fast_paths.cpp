@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "fluid/fluid_solver.hpp"
-#include "fluid/multigrid.hpp"
-#include "fluid/projection.hpp"
-#include "fluid/reference_data.hpp"
-#include "fluid/semi_lagrangian.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/multigrid.hpp"
+#include "jellysim/fluid/projection.hpp"
+#include "jellysim/fluid/reference_data.hpp"
+#include "jellysim/fluid/semi_lagrangian.hpp"
 #include "fluid_test_util.hpp"
 
 namespace jellysim::fluid {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "fluid/direct_poisson.hpp"
-#include "fluid/fft_poisson.hpp"
+#include "jellysim/fluid/direct_poisson.hpp"
+#include "jellysim/fluid/fft_poisson.hpp"
 
 namespace jellysim::fluid {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "fluid/boundary.hpp"
-#include "fluid/grid.hpp"
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/grid.hpp"
 
 namespace jellysim::fluid {
 namespace {

@@ -1,11 +1,11 @@
 // The mirror-symmetric part of a flow (fluid/mirror.hpp).
-#include "fluid/mirror.hpp"
+#include "jellysim/fluid/mirror.hpp"
 
 #include <gtest/gtest.h>
 
-#include "fluid/boundary.hpp"
-#include "fluid/poisson.hpp"
-#include "fluid/projection.hpp"
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/poisson.hpp"
+#include "jellysim/fluid/projection.hpp"
 #include "fluid_test_util.hpp"
 
 namespace jellysim::fluid {

@@ -6,11 +6,11 @@
 #include <sstream>
 #include <string>
 
-#include "fluid/boundary.hpp"
-#include "fluid/reference_data.hpp"
-#include "fluid/tracers.hpp"
-#include "io/vtk_fields.hpp"
-#include "render/field_picture.hpp"
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/reference_data.hpp"
+#include "jellysim/fluid/tracers.hpp"
+#include "jellysim/io/vtk_fields.hpp"
+#include "jellysim/render/field_picture.hpp"
 
 namespace jellysim {
 namespace {

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "fluid/direct_poisson.hpp"
-#include "fluid/fft_poisson.hpp"
-#include "fluid/multigrid.hpp"
-#include "fluid/projection.hpp"
-#include "fluid/sor.hpp"
+#include "jellysim/fluid/direct_poisson.hpp"
+#include "jellysim/fluid/fft_poisson.hpp"
+#include "jellysim/fluid/multigrid.hpp"
+#include "jellysim/fluid/projection.hpp"
+#include "jellysim/fluid/sor.hpp"
 #include "fluid_test_util.hpp"
 
 namespace jellysim::fluid {

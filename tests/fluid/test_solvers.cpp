@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fluid/diagnostics.hpp"
-#include "fluid/eulerian_solver.hpp"
-#include "fluid/experiments_cavity.hpp"
-#include "fluid/experiments_taylor_green.hpp"
-#include "fluid/fluid_solver.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/fluid/eulerian_solver.hpp"
+#include "jellysim/fluid/experiments_cavity.hpp"
+#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
 
 namespace jellysim::fluid {
 namespace {

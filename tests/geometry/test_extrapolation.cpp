@@ -5,9 +5,9 @@
 #include <map>
 #include <utility>
 
-#include "geometry/extrapolation.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "io/errors.hpp"
+#include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "geometry/obstacle_mesh.hpp"
+#include "jellysim/geometry/obstacle_mesh.hpp"
 
 namespace jellysim::geometry {
 namespace {

@@ -2,7 +2,7 @@
 // (ImprovedNoise.java, 2002), run with OpenJDK: bit-for-bit equality.
 #include <gtest/gtest.h>
 
-#include "geometry/perlin.hpp"
+#include "jellysim/geometry/perlin.hpp"
 
 namespace jellysim::geometry {
 namespace {

@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "geometry/rendering_model.hpp"
-#include "geometry/spline.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "io/errors.hpp"
+#include "jellysim/geometry/rendering_model.hpp"
+#include "jellysim/geometry/spline.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/core/errors.hpp"
 
 namespace jellysim::geometry {
 namespace {

@@ -1,6 +1,6 @@
-#include "io/config.hpp"
-#include "io/errors.hpp"
-#include "io/output.hpp"
+#include "jellysim/config/config.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // The built-in (resolved) scene is tested in test_swim.cpp.
 #include <string>
 
-#include "experiments/experiment.hpp"
-#include "io/config.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/config/config.hpp"
 
 namespace jellysim::experiments::testing {
 

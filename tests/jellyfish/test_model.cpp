@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "elastic/forces.hpp"
-#include "jellyfish/contraction.hpp"
-#include "jellyfish/jellyfish.hpp"
-#include "jellyfish/metrics.hpp"
+#include "jellysim/elastic/forces.hpp"
+#include "jellysim/jellyfish/contraction.hpp"
+#include "jellysim/jellyfish/jellyfish.hpp"
+#include "jellysim/jellyfish/metrics.hpp"
 
 namespace jellysim::jellyfish {
 namespace {

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "jellyfish/swim_simulation.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
 
 namespace jellysim::experiments {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "experiments/experiment.hpp"
-#include "experiments/jellyfish_runs.hpp"
-#include "io/errors.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/core/errors.hpp"
 #include "jellyfish_test_util.hpp"
 
 namespace jellysim::experiments {

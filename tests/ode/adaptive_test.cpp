@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 #include "test_problems.hpp"
 #include "test_support.hpp"
 

@@ -1,11 +1,11 @@
 // Backward Euler with Newton's method: stiffness, Newton convergence, failures, pattern reuse.
-#include "ode/backward_euler.hpp"
+#include "jellysim/ode/backward_euler.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
-#include "ode/explicit_runge_kutta.hpp"
+#include "jellysim/ode/explicit_runge_kutta.hpp"
 #include "test_problems.hpp"
 #include "test_support.hpp"
 

@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 #include "test_problems.hpp"
 #include "test_support.hpp"
 

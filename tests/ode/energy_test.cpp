@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 #include "test_problems.hpp"
 #include "test_support.hpp"
 

@@ -1,5 +1,5 @@
 // Leap-frog specifics (its order and energy behaviour are in convergence_test and energy_test).
-#include "ode/leapfrog.hpp"
+#include "jellysim/ode/leapfrog.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 
 namespace jellysim::ode {
 namespace {

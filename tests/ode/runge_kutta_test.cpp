@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "ode/butcher_tableau.hpp"
-#include "ode/explicit_runge_kutta.hpp"
+#include "jellysim/ode/butcher_tableau.hpp"
+#include "jellysim/ode/explicit_runge_kutta.hpp"
 #include "test_problems.hpp"
 #include "test_support.hpp"
 

@@ -1,7 +1,7 @@
 // The one-pass Runge–Kutta stage sums (ode/stage_sum.hpp) against the term-by-term vector sums they
 // replace: bit for bit, for every number of terms (zero weights skipped, more terms than one pass
 // takes), on whole vectors, on segments and without the base vector.
-#include "ode/stage_sum.hpp"
+#include "jellysim/ode/stage_sum.hpp"
 
 #include <gtest/gtest.h>
 

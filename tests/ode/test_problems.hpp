@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "ode/ode_system.hpp"
+#include "jellysim/ode/ode_system.hpp"
 
 namespace jellysim::ode::testing {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "ode/integrator.hpp"
+#include "jellysim/ode/integrator.hpp"
 
 namespace jellysim::ode::testing {
 

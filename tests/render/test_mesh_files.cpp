@@ -4,10 +4,10 @@
 #include <cstring>
 #include <sstream>
 
-#include "geometry/extrapolation.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "io/errors.hpp"
-#include "io/mesh_files.hpp"
+#include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/mesh_files.hpp"
 
 namespace jellysim::io {
 namespace {

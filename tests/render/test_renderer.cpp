@@ -6,15 +6,15 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "experiments/experiment.hpp"
-#include "geometry/extrapolation.hpp"
-#include "geometry/obstacle_mesh.hpp"
-#include "geometry/synthetic_bell.hpp"
-#include "io/errors.hpp"
-#include "render/animation_outputs.hpp"
-#include "render/gl_renderer.hpp"
-#include "render/video.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/geometry/obstacle_mesh.hpp"
+#include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/render/animation_outputs.hpp"
+#include "jellysim/render/gl_renderer.hpp"
+#include "jellysim/render/video.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::render {
 namespace {

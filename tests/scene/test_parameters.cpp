@@ -8,11 +8,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "io/errors.hpp"
-#include "scene/jellyfish_scene.hpp"
-#include "scene/live_parameters.hpp"
-#include "scene/reference.hpp"
-#include "scene/render_settings.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/scene/reference.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Shared helpers for the SPH tests: a seeded random source.
-#include "math/vec2.hpp"
+#include "jellysim/math/vec2.hpp"
 
 #include <random>
 

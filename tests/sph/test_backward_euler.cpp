@@ -1,9 +1,9 @@
 // Backward Euler for SPH (thesis eq. 2.33) by a Jacobian-free Newton–Krylov solve: one step solves
 // the implicit equation, a fluid at rest stays at rest with steps beyond the explicit limit, and
 // the Newton–Krylov settings are validated.
-#include "sph/backward_euler.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/scene.hpp"
+#include "jellysim/sph/backward_euler.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/scene.hpp"
 
 #include <gtest/gtest.h>
 

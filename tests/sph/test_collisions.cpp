@@ -1,6 +1,6 @@
 // Particle–edge and wall collisions (thesis §5.2.1-5.2.2): the swap rule, momentum and energy,
 // no tunnelling in a randomized stress test, trapped particles.
-#include "sph/collisions.hpp"
+#include "jellysim/sph/collisions.hpp"
 #include "sph_test_util.hpp"
 
 #include <gtest/gtest.h>

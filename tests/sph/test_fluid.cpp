@@ -1,8 +1,8 @@
 // SPH forces (eqs. 5.5-5.8), the neighbour grid, walls and initial conditions (§5.1.2-5.1.3).
-#include "sph/fluid.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/neighbour_grid.hpp"
-#include "sph/scene.hpp"
+#include "jellysim/sph/fluid.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/neighbour_grid.hpp"
+#include "jellysim/sph/scene.hpp"
 #include "sph_test_util.hpp"
 
 #include <gtest/gtest.h>

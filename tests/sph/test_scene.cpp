@@ -1,10 +1,10 @@
 // Whole particle-fluid scenes (thesis §5.1.3, §5.3, §8.1.1-8.1.2): a fluid at rest between mirrored
 // walls, momentum of the coupled fluid–body system, every integrator, determinism, eq. 5.31, and the
 // bar against a static floor.
-#include "elastic/bar.hpp"
-#include "sph/bodies.hpp"
-#include "sph/initial_conditions.hpp"
-#include "sph/scene.hpp"
+#include "jellysim/elastic/bar.hpp"
+#include "jellysim/sph/bodies.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/scene.hpp"
 #include "sph_test_util.hpp"
 
 #include <gtest/gtest.h>

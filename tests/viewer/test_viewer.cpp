@@ -9,7 +9,7 @@
 #include <set>
 
 #include "../cli_runner.hpp"
-#include "render/image.hpp"
+#include "jellysim/render/image.hpp"
 
 namespace {
 

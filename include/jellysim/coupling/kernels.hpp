@@ -1,0 +1,51 @@
+#pragma once
+// Transfer between Lagrangian points and the staggered grid (thesis §4.3.2): interpolation of
+// face velocities to points and spreading of point forces onto faces with the same kernel, so the
+// two operations are adjoint. Two kernels: the thesis's nearest-four-samples (bilinear) kernel and
+// Peskin's regularised 4-point delta function.
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "jellysim/fluid/grid.hpp"
+
+namespace jellysim::coupling {
+
+enum class Kernel {
+  bilinear,  ///< φ(r) = 1 − |r| on |r| < 1: the four nearest samples (thesis §4.3.2)
+  peskin4,   ///< Peskin's 4-point regularised delta, support |r| < 2
+};
+
+std::string_view to_string(Kernel k);
+/// Parses "bilinear" or "peskin4"; nullopt otherwise.
+std::optional<Kernel> kernel_from_string(std::string_view name);
+
+/// One-dimensional kernel φ(r), r in sample spacings; Σ_i φ(r − i) = 1 and Σ_i (r − i) φ(r − i) = 0.
+double kernel_weight(Kernel k, double r);
+/// Half-width of the kernel's support in samples (1 or 2).
+int kernel_radius(Kernel k);
+
+/// The samples of one staggered field that a point touches and their weights w = φ(Δi) φ(Δj).
+/// Samples outside the stored range (interior plus one ghost layer) get weight 0.
+struct Stencil {
+  int i0 = 0, j0 = 0;  ///< first sample index in x and y
+  int width = 0;       ///< 2 (bilinear) or 4 (peskin4) samples per direction
+  double wx[4] = {0, 0, 0, 0};
+  double wy[4] = {0, 0, 0, 0};
+};
+Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k);
+
+/// Σ w · field over the stencil (the velocity at a point, eq. 4.20's u(x_i)); ghosts must be set.
+double interpolate(const fluid::Field& field, const Stencil& s);
+/// field += value · w over the stencil (samples inside the stored range only).
+void spread(fluid::Field& field, const Stencil& s, double value);
+
+/// Fluid velocity (m/s) at each point (needs filled ghosts).
+void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out);
+
+/// Adds the accelerations (m/s²) that point forces F_k (N per metre of depth: 2D forces) give the
+/// fluid: a(face) += Σ_k F_k w_k(face) / (ρ ΔxΔy) — the force density divided by ρ (eq. 4.19).
+void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
+                   fluid::FaceAccelerations& acc);
+
+}  // namespace jellysim::coupling

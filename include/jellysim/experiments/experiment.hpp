@@ -1,0 +1,62 @@
+#pragma once
+// Experiments and scenes are data (a TOML file each, compiled in) run by one generic command.
+// Each experiment is a function from its resolved configuration to files in an output directory.
+#include "jellysim/config/config.hpp"
+#include "jellysim/io/output.hpp"
+#include "jellysim/sim/time_stepping.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace jellysim::experiments {
+
+/// What an experiment gets: its configuration (defaults + scene file + --set), where to write, and
+/// a progress callback for long runs (may be empty).
+struct Context {
+  io::Config config;
+  sim::ProgressCallback progress;
+};
+
+/// Result of an experiment run. `failure` non-empty means the run failed (exit code 1) after
+/// writing what it had.
+struct Outcome {
+  std::string failure;
+};
+
+/// An experiment validates its whole configuration in `prepare` (throwing InputError) before
+/// anything is written, then `run` writes its outputs.
+struct Experiment {
+  std::string name;
+  std::string description;
+  std::string definition_path;  ///< embedded TOML file with the defaults, e.g. "scenes/swinging-bar.toml"
+  std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare;
+  /// Optional embedded scene whose fields the definition extends (e.g. "scenes/jellyfish.toml"): the
+  /// defaults are the base scene's, overridden and extended by the definition file.
+  std::string base_path{};
+  /// Optional embedded scene file laid over the base before the definition (like a user's scene
+  /// file), e.g. "scenes/jellyfish-thesis.toml": the chapter 8 studies run on the thesis's tank.
+  std::string base_overlay_path{};
+  /// The definition also has the [render] section of the 3D pipeline (scene/render_settings.hpp),
+  /// whose defaults come from its parameter table.
+  bool renders = false;
+};
+
+const std::vector<Experiment>& all_experiments();
+/// Finds an experiment by name; throws InputError listing the known names.
+const Experiment& find_experiment(const std::string& name);
+/// The experiment's default configuration, parsed from its embedded definition file.
+io::Config default_config(const Experiment& experiment);
+/// Text of an embedded file; throws std::logic_error when absent (a build error).
+std::string_view embedded_text(std::string_view path);
+/// The built-in jellyfish scene's path; its text is generated from the scene layer's parameter table.
+inline constexpr std::string_view kJellyfishScenePath = "scenes/jellyfish.toml";
+/// The text of a scene or experiment definition: the embedded file, or for the jellyfish scene the
+/// text generated from its parameter table.
+std::string definition_text(std::string_view path);
+
+/// Writes summary.json: status, version, command, key figures and the resolved configuration.
+void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
+                   const nlohmann::ordered_json& figures, const std::string& failure);
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,62 @@
+#pragma once
+// Shared pieces of the jellyfish commands (`jellysim simulate` and the chapter 8 jellyfish
+// experiments): the output options, running a swim scene while writing per-frame
+// pictures and VTK files, and writing metrics, plots and summary figures.
+#include <nlohmann/json.hpp>
+
+#include "jellysim/config/config.hpp"
+#include "jellysim/io/output.hpp"
+#include "jellysim/jellyfish/metrics.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
+#include "jellysim/render/field_picture.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+
+namespace jellysim::experiments {
+
+using scene::read_swim_settings;  // the scene layer reads the scene (scene/jellyfish_scene.hpp)
+
+struct SwimOutputOptions {
+  bool pictures = false;
+  int picture_every = 1;
+  render::FieldQuantity quantity = render::FieldQuantity::vorticity;
+  double zoom_diameters = 6.0;  ///< picture width in bell diameters; 0: whole tank
+  bool vtk = false;
+};
+SwimOutputOptions read_output_options(const io::Config& c);
+
+struct SwimRecording {
+  std::vector<double> frame_times;                  ///< s, one per recorded frame
+  std::vector<jellyfish::SliceFrame> frames;        ///< the first jellyfish (metrics.csv)
+  jellyfish::SwimRunStats stats;
+  std::vector<jellyfish::MetricsRow> metrics;
+  std::vector<std::vector<jellyfish::SliceFrame>> others;        ///< jellyfish 2, 3, …
+  std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
+  std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
+  std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
+};
+
+/// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).
+SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
+                       const io::OutputDir* out, const sim::ProgressCallback& progress);
+
+/// metrics.csv: t, position, velocity, acceleration, volume, aperture_area, volume_ratio,
+/// aperture_ratio, thrust, lateral, daniel_velocity, daniel_position.
+void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
+                       const std::string& name = "metrics.csv");
+/// For busier tanks: metrics_jellyfish_N.csv for the second jellyfish on (same columns as
+/// metrics.csv) and obstacles.csv (t, obstacle, force_x, force_y: the fluid's force, N/m).
+void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec);
+/// slices.csv: frame, t, part (umbrella or tentacle_k), index, x, y — the recorded 2D slices.
+void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames);
+/// kinematics.png (position, velocity, acceleration; Figs 8.15–8.17, with Daniel's model) and
+/// morphology.png (volume and aperture ratios; Fig. 8.18).
+void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
+                      const std::string& title);
+/// Key figures for summary.json: units, bell_height, cycles, distance_travelled, lateral_drift,
+/// volume_frequency, simulated_seconds, wall_seconds, steps and more.
+nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, const SwimRecording& rec);
+
+/// The 2D picture of one state (springs, muscles, tracers over speed or vorticity).
+render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double zoom_diameters);
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,40 @@
+#pragma once
+// The classical Eulerian method of thesis §4.1 (Griebel, Dornseifer & Neunhoeffer): explicit
+// predictor F, G (eq. 4.6) with donor-cell/central convective differences blended by γ, pressure
+// Poisson equation (eq. 3.3), velocity correction (eq. 4.7), stability limits eqs. 4.8–4.9.
+#include "jellysim/fluid/fluid_solver.hpp"
+
+namespace jellysim::fluid {
+
+class EulerianSolver final : public FluidSolver {
+ public:
+  EulerianSolver(const MacGrid& grid, const FluidSettings& settings);
+  std::string_view name() const override { return "eulerian"; }
+  /// Advances by dt_s; a Δt above stable_time_step() is refused (std::domain_error) or split
+  /// into stable sub-steps according to settings().time_step_policy.
+  StepReport step(double dt_s) override;
+  double stable_time_step() const override;
+  /// The predictor (eq. 4.6) adds Δt·a on the interior faces, then one projection.
+  bool projects_body_acceleration_linearly() const override { return true; }
+  /// γ used in the last step.
+  double last_donor_cell_blend() const { return last_gamma_; }
+
+ private:
+  PressureSolveReport single_step(double dt_s);
+  double donor_cell_blend(double dt_s) const;
+  /// Eq. 4.6 on the interior faces: F = u + Δt(ν∇²u − ∂(u²)/∂x − ∂(uv)/∂y + f_x), same for G.
+  void compute_predictor(double dt_s, double gamma);
+
+  Velocity predictor_;
+  double last_gamma_ = 0.0;
+};
+
+/// Convective term ∂(u²)/∂x + ∂(uv)/∂y at the x-face (i, j) with donor-cell weight γ
+/// (Griebel et al. eq. 3.19).
+double convection_u(const Velocity& vel, int i, int j, double gamma);
+/// Convective term ∂(uv)/∂x + ∂(v²)/∂y at the y-face (i, j).
+double convection_v(const Velocity& vel, int i, int j, double gamma);
+/// Five-point Laplacian of a face field at (i, j) (ghosts must be filled).
+double face_laplacian(const Field& f, int i, int j);
+
+}  // namespace jellysim::fluid

@@ -1,0 +1,107 @@
+#pragma once
+// The pressure Poisson equation ∇²p = b on the cell centres (eq. 3.3), discretised with the
+// five-point stencil and the edge coefficients of eq. 4.10: a Neumann side removes the neighbour
+// from both the sum and the diagonal, a Dirichlet (p = 0 on the side) side adds 2/h² to the
+// diagonal (ghost value −p), a periodic side wraps to the opposite cell. Arrays are row-major,
+// index j·nx + i, without ghosts.
+#include <array>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "jellysim/fluid/boundary.hpp"
+
+namespace jellysim::fluid {
+
+/// Stencil data along one axis: for every cell, the index of its lower and upper neighbour
+/// (itself when there is none, with weight 0) and the axis' share of the diagonal.
+struct StencilAxis {
+  std::vector<int> lower, upper;
+  std::vector<double> lower_weight, upper_weight, diagonal;  // 1/h² units
+};
+
+class PoissonOperator {
+ public:
+  PoissonOperator(int nx, int ny, double dx, double dy, std::array<PressureBoundary, 4> sides);
+  PoissonOperator(const MacGrid& g, const Boundaries& b)
+      : PoissonOperator(g.nx, g.ny, g.dx(), g.dy(), pressure_boundaries(b)) {}
+
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  double dx() const { return dx_; }
+  double dy() const { return dy_; }
+  int size() const { return nx_ * ny_; }
+  const std::array<PressureBoundary, 4>& sides() const { return sides_; }
+  const StencilAxis& x_axis() const { return x_; }
+  const StencilAxis& y_axis() const { return y_; }
+  /// No Dirichlet side: p is defined up to a constant and b must have zero mean.
+  bool singular() const;
+  bool same_problem(const PoissonOperator& o) const;
+
+  /// out = ∇²p.
+  void apply(std::span<const double> p, std::span<double> out) const;
+  /// r = b − ∇²p.
+  void residual(std::span<const double> p, std::span<const double> b, std::span<double> r) const;
+  double residual_max(std::span<const double> p, std::span<const double> b) const;
+  /// Row j of r = b − ∇²p into out[0, nx) (same values as residual()).
+  void residual_row(std::span<const double> p, std::span<const double> b, int j, double* out) const;
+  /// Sum of neighbour terms of eq. 4.11 at (i, j), i.e. ∇²p + diagonal·p.
+  double neighbour_sum(std::span<const double> p, int i, int j) const;
+  double diagonal(int i, int j) const { return x_.diagonal[i] + y_.diagonal[j]; }
+  /// The same problem at half resolution (nx and ny must be even).
+  PoissonOperator coarsened() const;
+
+ private:
+  /// Calls visit(k, (∇²p)_k) for every cell k.
+  template <class Visit>
+  void for_each_laplacian(std::span<const double> p, Visit&& visit) const;
+
+  int nx_, ny_;
+  double dx_, dy_;
+  std::array<PressureBoundary, 4> sides_;
+  StencilAxis x_, y_;
+};
+
+/// Subtracts the mean so that a singular (pure Neumann/periodic) problem has a solution.
+void remove_mean(std::span<double> values);
+double max_abs(std::span<const double> values);
+
+struct PressureSolverSettings {
+  double relative_tolerance = 1e-6;  ///< stop when max|r| ≤ tol · max|b| (max-norm, §4.1.4)
+  double absolute_tolerance = 0.0;   ///< or when max|r| ≤ this (units of b, 1/s²)
+  int max_iterations = 10000;        ///< sweeps (SOR) or V-cycles (multigrid)
+  double sor_omega = 1.7;            ///< relaxation ω of eq. 4.11 (Griebel et al. use 1.7)
+  int sor_check_interval = 4;        ///< SOR sweeps between residual evaluations
+  int multigrid_smoothing = 2;       ///< red-black Gauss–Seidel sweeps before and after
+};
+
+struct PressureSolveReport {
+  int iterations = 0;
+  double residual_max = 0.0;  ///< max-norm of b − ∇²p at exit (after making b compatible)
+  double rhs_max = 0.0;
+  bool converged = false;
+};
+
+/// Solves ∇²p = b for p (initial guess on entry). Singular problems: b is made compatible by
+/// removing its mean, and the returned p has zero mean.
+class PressureSolver {
+ public:
+  virtual ~PressureSolver() = default;
+  virtual std::string_view name() const = 0;
+  virtual PressureSolveReport solve(const PoissonOperator& op, std::span<const double> b,
+                                    std::span<double> p) = 0;
+  /// False for exact solvers, which ignore what p holds on entry (no initial guess is prepared).
+  virtual bool uses_initial_guess() const { return true; }
+};
+
+/// "sor", "multigrid", "direct" or "fft"; throws std::invalid_argument for other names.
+std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
+                                                     const PressureSolverSettings& settings = {});
+
+/// Conjugate gradients on −∇² (symmetric positive (semi-)definite); used for the coarsest
+/// multigrid level. Returns the iteration count.
+int conjugate_gradient_poisson(const PoissonOperator& op, std::span<const double> b,
+                               std::span<double> p, double relative_tolerance, int max_iterations);
+
+}  // namespace jellysim::fluid

@@ -1,0 +1,139 @@
+#pragma once
+// The 2D jellyfish slice of thesis §7.1 (Figure 7.2 right, Figure 7.5) as a spring-mass body:
+//  * the umbrella: a string of points along the subumbrellar surface, joined by linear springs
+//    (mesoglea) and angular springs (bending); or the dense linear-spring mesh of Fig. 7.2 left;
+//  * subumbrellar muscle springs across the bell between opposing points, whose rest lengths the
+//    contraction function drives (eq. 7.5) with a neural phase delay per spring (§6.2, §7.1);
+//  * two tentacle strands hanging from the aperture, with linear and angular springs.
+// Units: metres, seconds; spring constants are per metre of slice depth (see docs/jellyfish.md).
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jellysim/elastic/body.hpp"
+#include "jellysim/jellyfish/contraction.hpp"
+#include "jellysim/jellyfish/slice_frame.hpp"
+
+namespace jellysim::jellyfish {
+
+enum class UmbrellaModel { angular, mesh };
+
+struct JellyfishSpec {
+  // Shape (Fig. 8.21).
+  Vec2 aperture_centre_m{0.12, 0.08};   ///< centre of the aperture (bell opening)
+  double tilt_rad = 0.0;              ///< rotation of the swimming axis from +y, counter-clockwise
+  double diameter_m = 0.04;
+  double height_m = 0.028;
+  double tentacle_length_m = 0.014;
+  double thickness_m = 0.0015;        ///< umbrella thickness ϑ
+  double max_spacing_m = 0.00125;     ///< marker spacing bound (Peskin: ≤ Δx/2 of the built-in tank)
+  int min_segments_per_side = 6;
+  UmbrellaModel model = UmbrellaModel::angular;
+
+  // Material (eq. 7.1, κ_l = λ A / l_r; forces per metre of depth).
+  double bell_modulus_pa = 1.186e6;       ///< bell mesoglea λ
+  double muscle_modulus_pa = 4.0e5;       ///< circumferential muscle λ
+  double bending_factor = 10.0;           ///< κ_θ = factor · κ_l l_r² for the umbrella's angular springs
+  double tentacle_volume_fraction = 3.0;  ///< tentacle springs' volume relative to the umbrella's (thesis: 0.01)
+  double tentacle_bending_factor = 1.0;   ///< κ_θ = factor · κ_l · l_r² for the tentacles' angular springs
+  double point_mass_kg = 1e-3;            ///< per marker (used only by the fluid-free model)
+
+  // Contraction (§7.1).
+  double frequency_hz = 0.7;
+  double gamma = 0.56;                    ///< contracted fraction of the rest length (eq. 7.5)
+  ContractionProfile profile{};           ///< shape and contraction fraction for every spring
+  double aperture_expansion_exponent = 2.0;  ///< expansion exponent p of the aperture-most spring (apex: 1)
+  double neural_delay_s = 0.03;           ///< activation delay across the umbrella (Fig. 6.9)
+  bool closed_loop = false;               ///< eq. 7.2 controller instead of the open-loop function
+  double controller_alpha = 2.0;
+  double phase_cycles = 0.0;              ///< phase offset of this individual (for several jellyfish)
+
+  // Steering (beyond the thesis, whose turning attempt failed, §9.2.2): the angular springs of one
+  // side of the umbrella are driven like muscles, their rest angles bent further inward in step
+  // with the contraction, so that side strokes harder and the jellyfish turns.
+  bool steering = false;
+  Vec2 steer_target_m{0.12, 0.28};        ///< the point to turn toward
+  double steer_gain = 0.3;                ///< extra bend of the side per radian of heading error
+  double steer_max_bend_rad = 20.0 * std::numbers::pi / 180.0;  ///< largest extra bend of a side (shared by its joints)
+  double steer_damping_cycles = 1.5;      ///< derivative time: heading change per cycle is weighed by this
+
+  int noise_seed = 1;                     ///< the individual's noise seed for rendering (§7.3)
+};
+
+/// Indices into the body of the parts of the slice.
+struct JellyfishLayout {
+  std::vector<int> umbrella;               ///< subumbrellar points, left tip → apex → right tip
+  std::vector<int> exumbrella;             ///< mesh model only: the outer row, same order
+  std::vector<std::vector<int>> tentacles; ///< each from the aperture outward
+  std::vector<int> muscle_springs;         ///< indices into body.linear
+  std::vector<double> muscle_uncontracted_m;
+  std::vector<ContractionProfile> muscle_profiles;
+  std::vector<double> muscle_delay_s;
+  int apex = 0;                            ///< index into umbrella (the middle)
+};
+
+class Jellyfish {
+ public:
+  explicit Jellyfish(const JellyfishSpec& spec);
+
+  const JellyfishSpec& spec() const { return spec_; }
+  const JellyfishLayout& layout() const { return layout_; }
+  elastic::Body& body() { return body_; }
+  const elastic::Body& body() const { return body_; }
+
+  /// Sets the muscle rest lengths for time t (eq. 7.5 with each spring's profile and delay, or the
+  /// eq. 7.2 controller).
+  void actuate(double t);
+  /// Q of muscle k at time t (open loop).
+  double muscle_activation(std::size_t k, double t) const;
+
+  /// The recorded state for rendering (positions of the body as it is now).
+  SliceFrame slice_frame(double t) const;
+  /// Umbrella points (subumbrellar surface) as positions.
+  std::vector<Vec2> umbrella_points() const;
+  /// Unit vector from the aperture centre to the apex at the start (the swimming axis).
+  Vec2 initial_axis() const { return rotated(Vec2{0.0, 1.0}, spec_.tilt_rad); }
+  /// Unit vector from the aperture centre to the apex now.
+  Vec2 heading() const;
+
+  // Live edits (the interactive viewer and steering).
+  /// New contraction frequency; the phase offset changes so the phase at time t stays the same.
+  void set_frequency(double hz, double t);
+  void set_gamma(double gamma);
+  /// Scales the umbrella and tentacle spring constants relative to those built from the spec.
+  void set_stiffness_scale(double scale);
+  void set_steer_target(std::optional<Vec2> target_m);
+  /// The steering bias now: signed extra bend (rad) of the steering side at full contraction,
+  /// shared by its joints; positive bends the left side (umbrella start) inward.
+  double steer_bias() const { return steer_bias_; }
+
+ private:
+  JellyfishSpec spec_;
+  JellyfishLayout layout_;
+  elastic::Body body_;
+  /// Steering (beyond the thesis): chooses the bias once per cycle and bends the active side.
+  void steer(double t);
+
+  std::vector<RestLengthController> controllers_;
+  std::vector<double> base_stiffness_;        ///< linear spring constants from the spec
+  std::vector<double> base_joint_stiffness_;  ///< angular spring constants from the spec
+  std::vector<double> base_rest_angle_;       ///< angular rest angles from the spec
+  std::vector<int> joint_side_;               ///< −1 left, +1 right, 0 apex or tentacle
+  double steer_bias_ = 0.0;
+  double steer_updated_phase_ = -1e300;       ///< cycle in which the bias was last chosen
+  Vec2 steer_last_heading_{};                 ///< heading when the bias was last chosen
+  bool steer_has_heading_ = false;
+};
+
+/// Checks the spec; throws std::invalid_argument naming the field and its allowed range.
+void validate(const JellyfishSpec& spec);
+
+/// Points along the half-ellipse subumbrellar profile (aperture tips at ±D/2, apex at height H),
+/// evenly spaced in arc length, left tip first; before tilt and translation.
+std::vector<Vec2> bell_profile(double diameter_m, double height_m, int segments_per_side);
+
+/// True when two non-adjacent segments of the polyline cross (the umbrella turned inside out).
+bool polyline_self_intersects(const std::vector<Vec2>& points);
+
+}  // namespace jellysim::jellyfish

@@ -1,0 +1,95 @@
+#pragma once
+// From recorded slices to the files a user holds (thesis §7.2–7.4, §8.2.4): PNG frames, an MP4,
+// an animated .glb, per-frame OBJ/PLY meshes and a small HTML viewer; and the Figure 8.19 stages
+// picture. The only place where geometry, meshes and pixels meet; physics never calls into it.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/io/output.hpp"
+#include "jellysim/jellyfish/slice_frame.hpp"
+#include "jellysim/render/gl_renderer.hpp"
+#include "jellysim/render/image.hpp"
+
+namespace jellysim::render {
+
+struct PipelineSettings {
+  geometry::GeometrySettings geometry;
+  int width_px = 640;
+  int height_px = 480;
+  double fps = 30.0;                  ///< video frame rate (normally 1 / the recorded frame interval)
+  double camera_distance = 2.6;       ///< camera distance in first-frame mesh extents
+  double camera_elevation_deg = 12.0; ///< above the horizontal
+  double camera_azimuth_deg = 25.0;   ///< around the axis, from the slice normal (+z)
+  double camera_follow = 0.25;        ///< per frame, the fraction of the way the target moves to the jellyfish (1: rigid)
+  double fov_y_deg = 40.0;
+  /// The scene's obstacles are drawn as prisms this long across the slice plane (m); the 2D
+  /// simulation treats them as infinitely long (geometry/obstacle_mesh.hpp).
+  double obstacle_depth_m = 0.12;
+  /// Multisampling of the rendered frames (OffscreenRenderer; 1: none). Not a config field: the
+  /// video keeps 4×; the interactive setting is 1 with style.per_vertex_lighting (docs/rendering.md).
+  int samples = 4;
+  RenderStyle style;
+  bool png_frames = true, video = true, glb = true, obj = true, ply = true, viewer = true;
+  /// The bundled viewer script (three.js + GLTFLoader + controls) copied next to viewer.html.
+  std::filesystem::path viewer_script;
+};
+
+/// The default viewer bundle: <source dir>/web/dist/jellyfish-viewer.js (built by `npm run build`
+/// in web/, see docs/rendering.md).
+std::filesystem::path default_viewer_script();
+
+/// Called after each frame: (frames done, frames in all).
+using FrameProgress = std::function<void(std::size_t done, std::size_t total)>;
+
+/// What write_animation_outputs wrote and measured.
+struct AnimationOutputs {
+  std::size_t frames = 0;
+  std::size_t vertices = 0, triangles = 0;     ///< per frame
+  double geometry_seconds_per_frame = 0.0;     ///< resample + extrapolate + noise + normals
+  double render_seconds_per_frame = 0.0;       ///< OpenGL draw + read back (0 when no PNG/video)
+  std::size_t glb_bytes = 0;
+  std::string renderer;                        ///< GL_RENDERER string
+  bool viewer_has_script = false;              ///< the viewer bundle was found and copied
+  std::vector<std::string> files;              ///< relative paths written
+  /// Key figures for summary.json.
+  nlohmann::ordered_json figures() const;
+};
+
+/// Writes, as the settings ask: frames/frame_0000.png …, jellyfish.mp4, jellyfish.glb,
+/// meshes/frame_0000.obj and .ply …, viewer.html with jellyfish-viewer.js and jellyfish.glb.js.
+/// Frames must have increasing times and one topology (same umbrella and tentacle point counts).
+/// Throws InputError for bad slices or settings, RunError when a file, OpenGL or ffmpeg fails.
+AnimationOutputs write_animation_outputs(const std::vector<jellyfish::SliceFrame>& frames,
+                                         const PipelineSettings& settings, const io::OutputDir& out,
+                                         const FrameProgress& progress = {});
+
+/// Per recorded frame, each obstacle's outline in the slice plane (m), e.g. its markers.
+using ObstacleFrames = std::vector<std::vector<std::vector<Vec2>>>;
+
+/// The same for several jellyfish in one scene: school[j] are the frames of jellyfish j (all the
+/// same count), seeds[j] its noise individual. Every frame's meshes are merged into one (all
+/// umbrellas, then all tentacles), so the .glb and meshes hold the whole school and the camera
+/// follows the middle of the umbrellas. `obstacles`, when not empty, holds one entry per frame: the
+/// obstacles become the mesh part "obstacles", prisms `settings.obstacle_depth_m` long.
+AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
+                                         const std::vector<std::uint64_t>& seeds, const PipelineSettings& settings,
+                                         const io::OutputDir& out, const FrameProgress& progress = {},
+                                         const ObstacleFrames& obstacles = {});
+
+/// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,
+/// structural noise, Perlin noise, compression noise, all noises; columns expanded, contracted.
+/// The noise length and individual come from `settings` (length from the expanded slice when 0).
+RgbImage render_stages_picture(const jellyfish::SliceFrame& expanded, const jellyfish::SliceFrame& contracted,
+                               const PipelineSettings& settings, int panel_width_px = 360, int panel_height_px = 300);
+
+/// The stage names of render_stages_picture, top to bottom.
+std::vector<std::string> stage_names();
+
+}  // namespace jellysim::render

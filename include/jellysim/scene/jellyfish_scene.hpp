@@ -1,0 +1,24 @@
+#pragma once
+// The jellyfish scene (`jellysim simulate`, `run`, `view`, `sweep` and the jellyfish experiments):
+// its parameter table, whose defaults are the built-in scene (scenes/jellyfish.toml is generated
+// from it), and the reader that turns a configuration into the simulation's settings.
+#include "jellysim/config/config.hpp"
+#include "jellysim/jellyfish/swim_simulation.hpp"
+#include "jellysim/scene/parameters.hpp"
+
+namespace jellysim::scene {
+
+/// Every field of a jellyfish scene: top level, [tank], [jellyfish], [coupling], [stability], [output].
+const ParameterTable& jellyfish_scene();
+
+/// Reads duration, output.frame_interval, [tank], [jellyfish], [[objects]], [coupling] and
+/// [stability]; throws InputError naming the field and what is allowed (a polygon file: its path
+/// and line).
+jellyfish::SwimSettings read_swim_settings(const io::Config& c);
+
+/// The built-in scene, the scene file at `path` (when not empty) laid over it, then the `--set`
+/// assignments: what `simulate`, `run` and `view` start from. A file whose `scene` is not
+/// "jellyfish" is an InputError naming it.
+io::Config load_jellyfish_scene(const std::string& path, const std::vector<std::string>& sets);
+
+}  // namespace jellysim::scene

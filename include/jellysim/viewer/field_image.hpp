@@ -1,0 +1,25 @@
+#pragma once
+// The fluid as a colour image for the viewer's 2D panel: one pixel per cell, speed on a sequential
+// colour map or vorticity on a diverging one. CPU only (the viewer uploads it as a texture).
+#include <cstdint>
+#include <vector>
+
+#include "jellysim/fluid/grid.hpp"
+
+namespace jellysim::viewer {
+
+enum class FieldShown { speed, vorticity };
+
+/// RGBA8, `width` × `height` pixels, row 0 at the bottom of the tank (OpenGL texture order).
+struct FieldImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+  double max_value = 0.0;  ///< largest |value| of the field (speed m/s or vorticity 1/s)
+};
+
+/// Colours the flow. `range` > 0 fixes the colour range (speed 0…range, vorticity −range…range);
+/// ≤ 0 takes the field's own maximum.
+FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double range);
+
+}  // namespace jellysim::viewer
