@@ -259,8 +259,8 @@ void BM_PoolCeiling(benchmark::State& state) {
     benchmark::DoNotOptimize(d.data());
   };
   using Clock = std::chrono::steady_clock;
-  sph::WorkerPool pool(2);
-  const std::vector<sph::WorkerPool::Phase> job(static_cast<std::size_t>(phases), sph::WorkerPool::Phase(work));
+  WorkerPool pool(2);
+  const std::vector<WorkerPool::Phase> job(static_cast<std::size_t>(phases), WorkerPool::Phase(work));
   const auto time_jobs = [&](bool parallel, int count) {
     pool.run_phases(job, parallel);  // not timed: wakes the helper
     const auto start = Clock::now();

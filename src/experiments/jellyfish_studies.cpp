@@ -13,6 +13,7 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/jellyfish/fluidless.hpp"
 #include "jellysim/render/plot.hpp"
 
@@ -286,22 +287,16 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   return [base, frequencies, placements, threads_wanted, ctx](const io::OutputDir& out) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<SweepRun> runs = plan_sweep(base, frequencies, placements);
-    std::atomic<std::size_t> next{0};
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned threads = std::min<unsigned>(threads_wanted > 0 ? static_cast<unsigned>(threads_wanted) : cores,
-                                                static_cast<unsigned>(runs.size()));
-    auto worker = [&]() {
-      for (std::size_t k = next++; k < runs.size(); k = next++) {
-        jellyfish::SwimSettings s = base;
-        jellyfish::JellyfishSpec& jelly = s.school.front();
-        jelly.frequency_hz = runs[k].frequency;
-        jelly.aperture_centre_m += runs[k].shift_m;
-        runs[k].rec = run_swim(s, {}, nullptr, {});
-      }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
+    // The pool's threads (at most 64), no more than there are runs.
+    const int threads = std::min({resolve_threads(std::min(threads_wanted, 64)), 64, static_cast<int>(runs.size())});
+    WorkerPool pool(std::max(1, threads));
+    pool.run_tasks(runs.size(), [&](std::size_t k) {
+      jellyfish::SwimSettings s = base;
+      jellyfish::JellyfishSpec& jelly = s.school.front();
+      jelly.frequency_hz = runs[k].frequency;
+      jelly.aperture_centre_m += runs[k].shift_m;
+      runs[k].rec = run_swim(s, {}, nullptr, {});
+    });
 
     io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "wall_seconds", "failed",
                        "placements", "distance_min", "distance_max", "distance_std"});

@@ -6,7 +6,7 @@
 #include "jellysim/math/vec2.hpp"
 #include "jellysim/sph/kernels.hpp"
 #include "jellysim/sph/neighbour_grid.hpp"
-#include "jellysim/sph/parallel.hpp"
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/sph/walls.hpp"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 #pragma once
-// A small persistent thread pool for the SPH force evaluation. One evaluation is a fixed sequence
-// of phases (load + mirrors, grid, density, forces); every thread runs each phase for its own part
+// The project's one thread pool: a small persistent pool of threads. Its first user is the SPH force
+// evaluation, a fixed sequence of phases (load + mirrors, grid, density, forces): every thread runs
+// each phase for its own part
 // (fixed contiguous index ranges) and a spin barrier separates the phases, so a whole evaluation
 // costs one hand-off and a few barriers. Every particle's sum is computed by one thread in a fixed
 // order, so results do not depend on the number of threads (determinism). Waiting threads spin
@@ -17,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-namespace jellysim::sph {
+namespace jellysim {
 
 /// The number of threads a `threads` setting asks for: itself when >= 1, all cores
 /// (std::thread::hardware_concurrency, at least 1, at most 64) when 0.
@@ -52,6 +53,12 @@ class WorkerPool {
   /// Calls body(begin, end, part) on the ranges of [0, n) (a single phase; serial when n < 64).
   using Body = std::function<void(std::size_t, std::size_t, int)>;
   void run(std::size_t n, const Body& body);
+
+  /// Runs task(k) for k = 0 .. n − 1, each exactly once, the threads taking the next task as they
+  /// finish one (for independent jobs of uneven length, e.g. the runs of a sweep). A task's result
+  /// must depend on k alone, so the results do not depend on the number of threads.
+  using Task = std::function<void(std::size_t k)>;
+  void run_tasks(std::size_t n, const Task& task);
 
  private:
   void helper_loop(int part);
@@ -97,4 +104,4 @@ class PathChooser {
   std::vector<double> parallel_times_, serial_times_;  ///< the current trial's jobs
 };
 
-}  // namespace jellysim::sph
+}  // namespace jellysim

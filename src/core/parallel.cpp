@@ -1,4 +1,4 @@
-#include "jellysim/sph/parallel.hpp"
+#include "jellysim/core/parallel.hpp"
 
 #include "jellysim/math/median.hpp"
 
@@ -10,7 +10,7 @@
 #include <immintrin.h>
 #endif
 
-namespace jellysim::sph {
+namespace jellysim {
 
 namespace {
 
@@ -100,6 +100,14 @@ void WorkerPool::run(std::size_t n, const Body& body) {
   run_phases(std::span<const Phase>(&phase, 1), n >= 64);
 }
 
+void WorkerPool::run_tasks(std::size_t n, const Task& task) {
+  std::atomic<std::size_t> next{0};
+  const Phase phase = [&](int) {
+    for (std::size_t k = next++; k < n; k = next++) task(k);
+  };
+  run_phases(std::span<const Phase>(&phase, 1), n > 1);
+}
+
 void WorkerPool::run_my_phases(int part) {
   // Read once: after the last barrier the caller may already be setting up the next run.
   const std::span<const Phase> phases = phases_;
@@ -155,4 +163,4 @@ void WorkerPool::helper_loop(int part) {
   }
 }
 
-}  // namespace jellysim::sph
+}  // namespace jellysim
