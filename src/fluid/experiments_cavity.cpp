@@ -7,6 +7,7 @@
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/projection.hpp"
 #include "jellysim/fluid/tracers.hpp"
+#include "jellysim/sim/frame_clock.hpp"
 
 namespace jellysim::fluid {
 namespace {
@@ -88,36 +89,32 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
   const int n = settings.tracers_per_side;
   Tracers tracers = n > 0 ? Tracers::lattice({0.05 * L, 0.05 * L}, {0.95 * L, 0.95 * L}, n, n) : Tracers{};
   const bool frames = settings.on_frame && settings.frame_interval_s > 0.0;
-  int next_frame = 0;
-  auto emit_frame = [&] {
-    settings.on_frame(solver->time_s(), solver->state(), tracers.positions());
-    ++next_frame;
+  // Frames (when asked for) on the shared clock; the run stops at max_time_s or at a steady state.
+  sim::FrameClock clock(frames ? settings.frame_interval_s : 0.0, settings.max_time_s, 1e-12);
+  sim::ClockedRun loop;
+  loop.time = [&] { return solver->time_s(); };
+  loop.frame = [&](std::int64_t) {
+    if (frames) settings.on_frame(solver->time_s(), solver->state(), tracers.positions());
+    return std::string();
   };
-  if (frames) emit_frame();
-  while (solver->time_s() < settings.max_time_s) {
+  loop.step = [&](double t_target) -> sim::StepResult {
     double dt = settings.time_step_s;
     if (dt <= 0.0) {
       dt = settings.solver == "eulerian" ? solver->stable_time_step() : grid.dx() / U;
       if (!std::isfinite(dt)) dt = settings.safety_factor * grid.dx() / U;  // fluid at rest
     }
-    dt = std::min(dt, settings.max_time_s - solver->time_s());
-    const double frame_time = next_frame * settings.frame_interval_s;
-    const bool lands_on_frame = frames && solver->time_s() + dt >= frame_time - 1e-12;
-    if (lands_on_frame) dt = frame_time - solver->time_s();
+    if (solver->time_s() + dt >= t_target - 1e-12) dt = t_target - solver->time_s();
     const StepReport report = solver->step(dt);
     tracers.advect(solver->state().velocity, solver->settings().boundaries, dt);
-    if (lands_on_frame) emit_frame();
     result.steps += report.substeps;
     if (!report.message.empty() && result.messages.size() < 3) result.messages.push_back(report.message);
     result.final_change_rate = max_change(solver->state().velocity, previous) / dt * L / (U * U);
     previous = solver->state().velocity;
-    if (result.final_change_rate < settings.steady_tolerance) {
-      result.steady = true;
-      break;
-    }
-  }
+    result.steady = result.final_change_rate < settings.steady_tolerance;
+    return {result.steady ? sim::StepResult::Kind::stop : sim::StepResult::Kind::ok, {}};
+  };
+  sim::run_frames(clock, loop);
   result.simulated_time_s = solver->time_s();
-  if (frames && solver->time_s() > (next_frame - 1) * settings.frame_interval_s) emit_frame();  // the last state
   result.final_state = solver->state();
   result.final_tracers_m = tracers.positions();
   result.max_divergence_per_s = max_divergence(result.final_state.velocity);

@@ -388,52 +388,37 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   SwimRunStats stats;
   stats.smallest_step_s = INFINITY;
   const double duration = settings_.duration_s;
-  const double frame_dt = settings_.frame_interval_s;
-  const long frames = std::max(1L, std::lround(duration / frame_dt));
-  auto finish = [&]() {
-    stats.simulated_seconds = time_s();
-    stats.steps = coupling_->steps();
-    stats.mirror_symmetric = mirror_active_;
-    stats.half_tank = half_tank_;
-    stats.symmetry_note = mirror_note_;
-    stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!std::isfinite(stats.smallest_step_s)) stats.smallest_step_s = 0.0;
-    return stats;
+  sim::FrameClock clock(settings_.frame_interval_s, duration, 1e-12 * std::max(1.0, duration),
+                        sim::FrameClock::Ending::nearest_frame);
+  sim::ClockedRun loop;
+  loop.time = [this] { return time_s(); };
+  loop.frame = [&](std::int64_t) { return on_frame ? on_frame(*this) : std::string(); };
+  loop.step = [&](double frame_time) -> sim::StepResult {
+    // Land on the frame time without a sliver step before it.
+    const double remaining = frame_time - time_s();
+    const double natural = coupling_->next_time_step();
+    const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
+    const SwimStep s = advance(limit);
+    if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
+      stats.smallest_step_s = std::min(stats.smallest_step_s, s.dt_s);
+      stats.largest_step_s = std::max(stats.largest_step_s, s.dt_s);
+      stats.krylov_iterations += s.krylov_iterations;
+    }
+    if (!s.failure.empty()) {
+      if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) on_frame(*this);  // keep the state that failed
+      return sim::StepResult::failed_with(s.failure);
+    }
+    return {};
   };
-  if (on_frame) {
-    if (std::string stop = on_frame(*this); !stop.empty()) {
-      stats.failure = stop;
-      return finish();
-    }
-  }
-  for (long f = 1; f <= frames; ++f) {
-    const double frame_time = std::min(duration, f * frame_dt);
-    while (time_s() < frame_time - 1e-12 * std::max(1.0, frame_time)) {
-      // Land on the frame time without a sliver step before it.
-      const double remaining = frame_time - time_s();
-      const double natural = coupling_->next_time_step();
-      const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
-      const SwimStep s = advance(limit);
-      if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
-        stats.smallest_step_s = std::min(stats.smallest_step_s, s.dt_s);
-        stats.largest_step_s = std::max(stats.largest_step_s, s.dt_s);
-        stats.krylov_iterations += s.krylov_iterations;
-      }
-      if (!s.failure.empty()) {
-        stats.failure = s.failure;
-        if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) on_frame(*this);  // keep the state that failed
-        return finish();
-      }
-      if (progress) progress(time_s(), duration, coupling_->steps());
-    }
-    if (on_frame) {
-      if (std::string stop = on_frame(*this); !stop.empty()) {
-        stats.failure = stop;
-        return finish();
-      }
-    }
-  }
-  return finish();
+  stats.failure = sim::run_frames(clock, loop, progress).failure;
+  stats.simulated_seconds = time_s();
+  stats.steps = coupling_->steps();
+  stats.mirror_symmetric = mirror_active_;
+  stats.half_tank = half_tank_;
+  stats.symmetry_note = mirror_note_;
+  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!std::isfinite(stats.smallest_step_s)) stats.smallest_step_s = 0.0;
+  return stats;
 }
 
 // ---- Live edits ----

@@ -12,9 +12,6 @@ std::string diverged_message(double t, std::int64_t step, const std::string& wha
   return s.str();
 }
 
-/// Time of output frame n; computed by multiplication so that frame times do not drift.
-double frame_time(std::int64_t n, double interval) { return static_cast<double>(n) * interval; }
-
 }  // namespace
 
 std::string check_finite(const ode::Vector& y) {
@@ -34,28 +31,17 @@ RunOutcome integrate(const ode::OdeSystem& system, ode::Vector& y, const TimeSet
 
   double t = 0.0;
   double dt_next = settings.dt;
-  std::int64_t frame = 0;
-  auto finish = [&](std::string failure) {
-    outcome.statistics.simulated_seconds = t;
-    outcome.statistics.function_evaluations = system.evaluations();
-    outcome.statistics.jacobian_evaluations = system.jacobian_evaluations();
-    outcome.statistics.rejected_steps = adaptive.statistics().rejected;
-    outcome.failed = !failure.empty();
-    outcome.failure = std::move(failure);
-    return outcome;
-  };
   // A frame time within this distance of t counts as reached (guards against round-off).
   const double eps = 1e-9 * settings.frame_interval;
-
-  while (true) {
-    if (t >= frame_time(frame, settings.frame_interval) - eps) {
-      if (std::string problem = on_frame(t, y); !problem.empty()) {
-        return finish(diverged_message(t, outcome.statistics.steps, problem));
-      }
-      ++frame;
-    }
-    if (t >= settings.duration - eps) break;
-    const double t_target = std::min(frame_time(frame, settings.frame_interval), settings.duration);
+  FrameClock clock(settings.frame_interval, settings.duration, eps, FrameClock::Ending::whole_frames);
+  ClockedRun run;
+  run.time = [&] { return t; };
+  run.frame = [&](std::int64_t) -> std::string {
+    if (std::string problem = on_frame(t, y); !problem.empty())
+      return diverged_message(t, outcome.statistics.steps, problem);
+    return {};
+  };
+  run.step = [&](double t_target) -> StepResult {
     const double dt_limit = t_target - t;
     try {
       if (settings.adaptive) {
@@ -65,23 +51,30 @@ RunOutcome integrate(const ode::OdeSystem& system, ode::Vector& y, const TimeSet
       } else {
         const double dt = std::min(settings.dt, dt_limit);
         if (!integrator->step(system, t, dt, y, y_next, nullptr).ok) {
-          return finish(diverged_message(t, outcome.statistics.steps,
-                                         settings.integrator + " could not complete a step of " +
-                                             std::to_string(dt) + " s (try a smaller dt or adaptive stepping)"));
+          return StepResult::failed_with(diverged_message(
+              t, outcome.statistics.steps,
+              settings.integrator + " could not complete a step of " + std::to_string(dt) +
+                  " s (try a smaller dt or adaptive stepping)"));
         }
         y.swap(y_next);
         t = (dt == dt_limit || std::abs(t + dt - t_target) <= eps) ? t_target : t + dt;
       }
     } catch (const ode::StepSizeUnderflow& e) {
-      return finish(diverged_message(t, outcome.statistics.steps, e.what()));
+      return StepResult::failed_with(diverged_message(t, outcome.statistics.steps, e.what()));
     }
     ++outcome.statistics.steps;
-    if (std::string problem = check_finite(y); !problem.empty()) {
-      return finish(diverged_message(t, outcome.statistics.steps, problem));
-    }
-    if (on_progress) on_progress(t, settings.duration, outcome.statistics.steps);
-  }
-  return finish({});
+    if (std::string problem = check_finite(y); !problem.empty())
+      return StepResult::failed_with(diverged_message(t, outcome.statistics.steps, problem));
+    return {};
+  };
+  const ClockOutcome clocked = run_frames(clock, run, on_progress);
+  outcome.statistics.simulated_seconds = t;
+  outcome.statistics.function_evaluations = system.evaluations();
+  outcome.statistics.jacobian_evaluations = system.jacobian_evaluations();
+  outcome.statistics.rejected_steps = adaptive.statistics().rejected;
+  outcome.failed = !clocked.failure.empty();
+  outcome.failure = clocked.failure;
+  return outcome;
 }
 
 }  // namespace jellysim::sim

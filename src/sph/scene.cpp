@@ -243,22 +243,25 @@ class Runner {
     const double eps = 1e-9 * ts.frame_interval;
     ode::Vector y = system_.pack_state();
     double dt_next = ts.dt;
-    std::int64_t frame = 0, emitted = 0;
-    while (true) {
-      if (t_ >= static_cast<double>(frame) * ts.frame_interval - eps) {
-        system_.unpack_state(y);
-        std::string problem = sim::check_finite(y);
-        if (problem.empty()) problem = check_speeds(scene_, settings_.max_speed);
-        if (problem.empty()) problem = on_frame(t_, scene_, system_);
-        if (!problem.empty()) return finish(diverged(t_, result_.statistics.steps, problem));
-        ++frame;
-      }
+    std::int64_t emitted = 0;
+    sim::FrameClock clock(ts.frame_interval, ts.duration, eps, sim::FrameClock::Ending::whole_frames);
+    sim::ClockedRun loop;
+    loop.time = [this] { return t_; };
+    loop.frame = [&](std::int64_t) -> std::string {
+      system_.unpack_state(y);
+      std::string problem = sim::check_finite(y);
+      if (problem.empty()) problem = check_speeds(scene_, settings_.max_speed);
+      if (problem.empty()) problem = on_frame(t_, scene_, system_);
+      return problem.empty() ? problem : diverged(t_, result_.statistics.steps, problem);
+    };
+    loop.after_frame_check = [&] {
       if (emitter_due(emitted, eps)) {
         emit(y);
         ++emitted;
       }
-      if (t_ >= ts.duration - eps) break;
-      const double t_target = std::min({static_cast<double>(frame) * ts.frame_interval, next_emission(emitted), ts.duration});
+    };
+    loop.step = [&](double frame_target) -> sim::StepResult {
+      const double t_target = std::min(frame_target, next_emission(emitted));
       const double thin_limit = thin_boundary_limit(y);
       const bool to_target = thin_limit >= t_target - t_;
       const double dt_limit = std::min(t_target - t_, thin_limit);
@@ -270,23 +273,23 @@ class Runner {
         } else {
           dt_taken = std::min(ts.dt, dt_limit);
           if (!integrator_->step(system_, t_, dt_taken, y, y_next_, nullptr).ok) {
-            return finish(diverged(t_, result_.statistics.steps, "the integrator could not complete a step"));
+            return sim::StepResult::failed_with(
+                diverged(t_, result_.statistics.steps, "the integrator could not complete a step"));
           }
           y.swap(y_next_);
           t_ += dt_taken;
         }
       } catch (const ode::StepSizeUnderflow& e) {
-        return finish(diverged(t_, result_.statistics.steps, e.what()));
+        return sim::StepResult::failed_with(diverged(t_, result_.statistics.steps, e.what()));
       }
       if (to_target && std::abs(t_ - t_target) <= eps) t_ = t_target;
       ++result_.statistics.steps;
       collide(y, dt_taken);
-      if (std::string problem = sim::check_finite(y); !problem.empty()) {
-        return finish(diverged(t_, result_.statistics.steps, problem));
-      }
-      if (progress) progress(t_, ts.duration, result_.statistics.steps);
-    }
-    return finish({});
+      if (std::string problem = sim::check_finite(y); !problem.empty())
+        return sim::StepResult::failed_with(diverged(t_, result_.statistics.steps, problem));
+      return {};
+    };
+    return finish(sim::run_frames(clock, loop, progress).failure);
   }
 
  private:

@@ -2,6 +2,7 @@
 // The time loop shared by every simulation: fixed or adaptive steps with any integrator, output
 // frames on a clock independent of the step size, divergence checks, and progress reporting.
 #include "jellysim/ode/integrator.hpp"
+#include "jellysim/sim/frame_clock.hpp"
 
 #include <functional>
 #include <string>
@@ -29,8 +30,6 @@ struct RunStatistics {
 /// the state is healthy, or a message saying what went wrong (e.g. "point 7 has a NaN position"),
 /// which stops the run.
 using FrameCallback = std::function<std::string(double t, const ode::Vector& y)>;
-/// Called after every accepted step (for progress display).
-using ProgressCallback = std::function<void(double t, double duration, std::int64_t steps)>;
 
 struct RunOutcome {
   RunStatistics statistics;
@@ -38,8 +37,8 @@ struct RunOutcome {
   std::string failure;   ///< "diverged at t = ... s (step N): ..."
 };
 
-/// Integrates `system` from y at t = 0 to settings.duration. Frames land exactly on multiples of
-/// frame_interval (the step is shortened to hit them). Never throws for a diverging simulation: the
+/// Integrates `system` from y at t = 0 to settings.duration on the frame clock (frame_clock.hpp):
+/// frames land exactly on multiples of frame_interval (the step is shortened to hit them). Never throws for a diverging simulation: the
 /// outcome says when and where, and the frames recorded so far stay valid.
 RunOutcome integrate(const ode::OdeSystem& system, ode::Vector& y, const TimeSettings& settings,
                      const FrameCallback& on_frame, const ProgressCallback& on_progress = {});

@@ -1,0 +1,78 @@
+#include "jellysim/sim/frame_clock.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace jellysim::sim {
+
+FrameClock::FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending)
+    : interval_(interval_s), duration_(duration_s), tolerance_(tolerance_s), end_(duration_s) {
+  if (interval_ <= 0.0) return;
+  switch (ending) {
+    case Ending::at_duration:  // the frame at the duration, or capped at it
+      last_ = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((duration_ - tolerance_) / interval_)));
+      break;
+    case Ending::whole_frames:
+      last_ = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((duration_ + tolerance_) / interval_)));
+      break;
+    case Ending::nearest_frame:
+      last_ = std::max<std::int64_t>(1, std::llround(duration_ / interval_));
+      end_ = frame_time(last_);
+      break;
+  }
+}
+
+double FrameClock::frame_time(std::int64_t n) const {
+  if (interval_ <= 0.0) return n == 0 ? 0.0 : duration_;
+  return std::min(static_cast<double>(n) * interval_, duration_);
+}
+
+double FrameClock::last_frame_time() const {
+  return next_ == 0 ? -std::numeric_limits<double>::infinity() : frame_time(next_ - 1);
+}
+
+bool FrameClock::due(double t) const {
+  if (interval_ <= 0.0) return next_ == 0;
+  return next_ <= last_ && t >= frame_time(next_) - tolerance_;
+}
+
+bool FrameClock::finished(double t) const {
+  return t >= end_ - tolerance_ && (interval_ <= 0.0 || next_ > last_);
+}
+
+double FrameClock::target() const {
+  return interval_ <= 0.0 || next_ > last_ ? end_ : frame_time(next_);
+}
+
+ClockOutcome run_frames(FrameClock& clock, const ClockedRun& run, const ProgressCallback& progress) {
+  ClockOutcome outcome;
+  while (true) {
+    if (clock.due(run.time())) {
+      if (std::string stop = run.frame(clock.frames_emitted()); !stop.empty()) {
+        outcome.failure = std::move(stop);
+        return outcome;
+      }
+      clock.frame_emitted();
+    }
+    if (run.after_frame_check) run.after_frame_check();
+    if (clock.finished(run.time())) return outcome;
+    const StepResult r = run.step(clock.target());
+    if (r.kind == StepResult::Kind::failed) {
+      outcome.failure = r.failure;
+      return outcome;
+    }
+    ++outcome.steps;
+    if (progress) progress(run.time(), clock.duration(), outcome.steps);
+    if (r.kind == StepResult::Kind::stop) {
+      outcome.stopped_early = true;
+      if (run.time() > clock.last_frame_time()) {
+        if (std::string stop = run.frame(clock.frames_emitted()); !stop.empty()) outcome.failure = std::move(stop);
+        clock.frame_emitted();
+      }
+      return outcome;
+    }
+  }
+}
+
+}  // namespace jellysim::sim

@@ -1,0 +1,108 @@
+// The shared frame clock and run loop (sim/frame_clock.hpp): frame times, the three ways a run ends,
+// early stops and failures.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "jellysim/sim/frame_clock.hpp"
+
+namespace {
+
+using jellysim::sim::ClockedRun;
+using jellysim::sim::FrameClock;
+using jellysim::sim::run_frames;
+using jellysim::sim::StepResult;
+
+struct Recorded {
+  std::vector<double> frames;  ///< times of the recorded frames
+  double end = 0.0;
+  std::int64_t steps = 0;
+  bool stopped_early = false;
+  std::string failure;
+};
+
+/// A runner whose natural step is `dt`: it steps min(dt, target − t) and lands on the target.
+Recorded run_clock(FrameClock clock, double dt, double stop_at = INFINITY, double fail_at = INFINITY) {
+  Recorded r;
+  double t = 0.0;
+  ClockedRun run;
+  run.time = [&] { return t; };
+  run.frame = [&](std::int64_t index) {
+    EXPECT_EQ(index, static_cast<std::int64_t>(r.frames.size()));
+    r.frames.push_back(t);
+    return std::string();
+  };
+  run.step = [&](double target) -> StepResult {
+    EXPECT_LE(t, target);
+    if (t >= fail_at) return StepResult::failed_with("failed at " + std::to_string(t));
+    t = t + dt >= target ? target : t + dt;
+    if (t >= stop_at) return {StepResult::Kind::stop, {}};
+    return {};
+  };
+  const auto outcome = run_frames(clock, run);
+  r.end = t;
+  r.steps = outcome.steps;
+  r.stopped_early = outcome.stopped_early;
+  r.failure = outcome.failure;
+  return r;
+}
+
+void expect_times(const std::vector<double>& got, const std::vector<double>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t k = 0; k < got.size(); ++k) EXPECT_NEAR(got[k], want[k], 1e-12) << "frame " << k;
+}
+
+TEST(FrameClock, FramesLandOnWholeIntervalsWhateverTheStep) {
+  // A step of 0.03 against frames every 0.1 s: each frame is hit exactly, by shortened steps.
+  const Recorded r = run_clock(FrameClock(0.1, 0.3, 1e-12), 0.03);
+  expect_times(r.frames, {0.0, 0.1, 0.2, 0.3});
+  EXPECT_DOUBLE_EQ(r.end, 0.3);
+  EXPECT_EQ(r.steps, 12);  // 4 steps per frame: 0.03, 0.03, 0.03, 0.01
+}
+
+TEST(FrameClock, ARunEndsAsItsRunnerAlwaysEnded) {
+  // Duration 0.25 with frames every 0.1 s (not a whole number of intervals).
+  const Recorded at = run_clock(FrameClock(0.1, 0.25, 1e-12, FrameClock::Ending::at_duration), 0.07);
+  expect_times(at.frames, {0.0, 0.1, 0.2, 0.25});
+  EXPECT_DOUBLE_EQ(at.end, 0.25);
+  const Recorded whole = run_clock(FrameClock(0.1, 0.25, 1e-12, FrameClock::Ending::whole_frames), 0.07);
+  expect_times(whole.frames, {0.0, 0.1, 0.2});
+  EXPECT_DOUBLE_EQ(whole.end, 0.25);
+  // Nearest frame: 2.5 intervals rounds to 3, capped at the duration; 0.24 s rounds to 2 (0.2 s).
+  const Recorded up = run_clock(FrameClock(0.1, 0.25, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
+  expect_times(up.frames, {0.0, 0.1, 0.2, 0.25});
+  const Recorded down = run_clock(FrameClock(0.1, 0.24, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
+  expect_times(down.frames, {0.0, 0.1, 0.2});
+  EXPECT_NEAR(down.end, 0.2, 1e-15);
+  // At least one frame after the start, even for a duration under half an interval.
+  const Recorded shortest = run_clock(FrameClock(0.1, 0.02, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
+  expect_times(shortest.frames, {0.0, 0.02});
+}
+
+TEST(FrameClock, FrameTimesDoNotDrift) {
+  // 1000 frames of 1/30 s: frame n is n/30 computed by multiplication, not a running sum.
+  const FrameClock clock(1.0 / 30.0, 1000.0 / 30.0, 1e-12);
+  EXPECT_EQ(clock.frame_time(999), 999.0 * (1.0 / 30.0));
+  const Recorded r = run_clock(clock, 0.011);
+  ASSERT_EQ(r.frames.size(), 1001u);
+  for (std::size_t n = 0; n < r.frames.size(); ++n) EXPECT_EQ(r.frames[n], clock.frame_time(static_cast<std::int64_t>(n)));
+}
+
+TEST(FrameClock, AnEarlyStopRecordsTheLastStateAndAFailureStopsAtOnce) {
+  const Recorded stopped = run_clock(FrameClock(0.1, 1.0, 1e-12), 0.04, 0.33);
+  EXPECT_TRUE(stopped.stopped_early);
+  expect_times(stopped.frames, {0.0, 0.1, 0.2, 0.3, 0.34});
+  // Stopping exactly on a frame records it once.
+  const Recorded on_frame = run_clock(FrameClock(0.1, 1.0, 1e-12), 0.05, 0.2);
+  expect_times(on_frame.frames, {0.0, 0.1, 0.2});
+  const Recorded failed = run_clock(FrameClock(0.1, 1.0, 1e-12), 0.05, INFINITY, 0.15);
+  EXPECT_EQ(failed.failure.rfind("failed at 0.15", 0), 0u) << failed.failure;
+  expect_times(failed.frames, {0.0, 0.1});
+  // No frames asked for (interval 0): the start only; the run goes to the duration.
+  const Recorded none = run_clock(FrameClock(0.0, 0.5, 1e-12), 0.2);
+  expect_times(none.frames, {0.0});
+  EXPECT_DOUBLE_EQ(none.end, 0.5);
+}
+
+}  // namespace
