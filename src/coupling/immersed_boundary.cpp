@@ -399,7 +399,7 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   if (!mirror_partner_.empty()) keep_symmetric_part(rhs);
   std::size_t applied = 0;
   Eigen::VectorXd z;
-  LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+  ode::LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     if (preconditioned) apply_preconditioner(in, z);
     const Eigen::VectorXd& e = preconditioned ? z : in;
     Eigen::VectorXd rkv;
@@ -411,7 +411,7 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
     out = e - dt2 * rkv;
   };
   Eigen::VectorXd correction, coefficients;
-  report.krylov = gmres_from_zero(op, rhs, correction, coefficients, settings_.krylov_tolerance,
+  report.krylov = ode::gmres_from_zero(op, rhs, correction, coefficients, settings_.krylov_tolerance,
                                   settings_.krylov_max_iterations);
   if (preconditioned) {
     apply_preconditioner(correction, z);

@@ -22,7 +22,7 @@ void check_time(const sph::RunSettings& s) {
 
 sph::RunSettings read_run_settings(const io::Config& c) {
   sph::RunSettings s;
-  // Every integrator; backward Euler runs Jacobian-free (sph::JacobianFreeBackwardEuler).
+  // Every integrator; backward Euler runs Jacobian-free (ode::JacobianFreeBackwardEuler).
   s.time.integrator = c.choice("time.integrator", ode::integrator_names());
   s.time.dt = c.number("time.dt", io::Range::positive());
   s.time.adaptive = c.boolean("time.adaptive");

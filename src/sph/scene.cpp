@@ -295,7 +295,7 @@ class Runner {
  private:
   void make_stepper() {
     if (stepper_) rejected_before_ += stepper_->statistics().rejected;
-    integrator_ = sph::make_integrator(settings_.time.integrator, settings_.newton);
+    integrator_ = ode::make_jacobian_free_integrator(settings_.time.integrator, settings_.newton);
     if (settings_.error_control == "step-doubling") integrator_ = without_embedded_pair(std::move(integrator_));
     stepper_ = std::make_unique<ode::AdaptiveStepper>(*integrator_, settings_.time.tolerances);
   }

@@ -1,7 +1,7 @@
 // Backward Euler for SPH (thesis eq. 2.33) by a Jacobian-free Newton–Krylov solve: one step solves
 // the implicit equation, a fluid at rest stays at rest with steps beyond the explicit limit, and
 // the Newton–Krylov settings are validated.
-#include "jellysim/sph/backward_euler.hpp"
+#include "jellysim/ode/newton_krylov.hpp"
 #include "jellysim/sph/initial_conditions.hpp"
 #include "jellysim/sph/scene.hpp"
 
@@ -32,9 +32,9 @@ TEST(SphBackwardEuler, OneStepSolvesTheImplicitEquation) {
   CoupledSystem system(s);
   const ode::Vector y = system.pack_state();
   const double t = 0.0, dt = 5e-3;
-  NewtonKrylovSettings newton;
+  ode::NewtonKrylovSettings newton;
   newton.atol = newton.rtol = 1e-10;
-  JacobianFreeBackwardEuler be(newton);
+  ode::JacobianFreeBackwardEuler be(newton);
   ode::Vector y1;
   ASSERT_TRUE(be.step(system, t, dt, y, y1, nullptr).ok);
   EXPECT_GE(be.last_newton_iterations(), 1);
@@ -114,15 +114,15 @@ TEST(SphBackwardEuler, RunsAdaptivelyAndMatchesAnExplicitReference) {
 }
 
 TEST(SphBackwardEuler, RejectsInvalidSettings) {
-  NewtonKrylovSettings s;
+  ode::NewtonKrylovSettings s;
   s.max_newton_iterations = 0;
-  EXPECT_THROW(JacobianFreeBackwardEuler{s}, std::invalid_argument);
+  EXPECT_THROW(ode::JacobianFreeBackwardEuler{s}, std::invalid_argument);
   s = {};
   s.gmres_tolerance = 1.0;
-  EXPECT_THROW(JacobianFreeBackwardEuler{s}, std::invalid_argument);
-  EXPECT_EQ(make_integrator("backward-euler")->name(), "backward-euler");
-  EXPECT_EQ(make_integrator("rk4")->name(), "rk4");
-  EXPECT_THROW(make_integrator("euler"), std::invalid_argument);
+  EXPECT_THROW(ode::JacobianFreeBackwardEuler{s}, std::invalid_argument);
+  EXPECT_EQ(ode::make_jacobian_free_integrator("backward-euler")->name(), "backward-euler");
+  EXPECT_EQ(ode::make_jacobian_free_integrator("rk4")->name(), "rk4");
+  EXPECT_THROW(ode::make_jacobian_free_integrator("euler"), std::invalid_argument);
 }
 
 }  // namespace

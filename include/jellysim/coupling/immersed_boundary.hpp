@@ -18,7 +18,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
-#include "jellysim/coupling/gmres.hpp"
+#include "jellysim/ode/gmres.hpp"
 #include "jellysim/coupling/kernels.hpp"
 #include "jellysim/coupling/mobility.hpp"
 #include "jellysim/elastic/body.hpp"
@@ -70,7 +70,7 @@ using Actuator = std::function<void(double t, elastic::Body& body)>;
 struct CoupledStepReport {
   double dt_s = 0.0;
   fluid::StepReport fluid{};
-  GmresReport krylov{};  ///< semi-implicit scheme only
+  ode::GmresReport krylov{};  ///< semi-implicit scheme only
 };
 
 class ImmersedBoundary {

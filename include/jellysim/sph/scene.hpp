@@ -6,7 +6,7 @@
 #include "jellysim/elastic/body.hpp"
 #include "jellysim/ode/integrator.hpp"
 #include "jellysim/sim/time_stepping.hpp"
-#include "jellysim/sph/backward_euler.hpp"
+#include "jellysim/ode/newton_krylov.hpp"
 #include "jellysim/sph/collisions.hpp"
 #include "jellysim/sph/fluid.hpp"
 
@@ -85,7 +85,7 @@ struct RunSettings {
   bool thin_boundary_limit = true;  ///< eq. 5.31
   double max_speed = 1e3;           ///< a particle or body point faster than this stops the run (m/s)
   Emitter emitter;
-  NewtonKrylovSettings newton;      ///< backward Euler's Jacobian-free Newton–Krylov solve
+  ode::NewtonKrylovSettings newton; ///< backward Euler's Jacobian-free Newton–Krylov solve
 };
 
 struct RunResult {

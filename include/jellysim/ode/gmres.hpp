@@ -1,11 +1,12 @@
 #pragma once
 // Restarted GMRES (Saad & Schultz 1986) for small matrix-free systems A x = b: the semi-implicit
-// immersed-boundary coupling solves one per step, with A applied through the fluid's projection.
+// immersed-boundary coupling solves one per step, with A applied through the fluid's projection,
+// and the Jacobian-free backward Euler (newton_krylov.hpp) one per Newton iteration.
 #include <functional>
 
 #include <Eigen/Dense>
 
-namespace jellysim::coupling {
+namespace jellysim::ode {
 
 struct GmresReport {
   int iterations = 0;             ///< operator applications
@@ -31,4 +32,4 @@ GmresReport gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::
 GmresReport gmres_from_zero(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                             Eigen::VectorXd& coefficients, double tolerance, int max_iterations, int restart = 30);
 
-}  // namespace jellysim::coupling
+}  // namespace jellysim::ode

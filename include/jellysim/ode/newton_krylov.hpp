@@ -1,5 +1,5 @@
 #pragma once
-// Backward Euler for the particle-fluid scenes without a Jacobian (thesis eq. 2.33, Newton's method
+// Backward Euler without a Jacobian, for systems that have none (first user: the particle-fluid scenes) (thesis eq. 2.33, Newton's method
 // eq. 2.36): a Jacobian-free Newton–Krylov solve. The SPH forces have no analytic Jacobian, so each
 // Newton system (I − Δt J) δ = −G is solved by restarted GMRES, with the products J v taken as
 // finite-difference directional derivatives of the right-hand side (Knoll & Keyes 2004):
@@ -12,7 +12,7 @@
 #include <memory>
 #include <string_view>
 
-namespace jellysim::sph {
+namespace jellysim::ode {
 
 struct NewtonKrylovSettings {
   /// Newton has converged when the scaled RMS norm (as ode::error_norm, each component divided by
@@ -60,8 +60,9 @@ class JacobianFreeBackwardEuler final : public ode::Integrator {
   int last_newton_ = 0, last_gmres_ = 0;
 };
 
-/// The integrator for a particle-fluid scene: every name of ode::integrator_names(); backward
-/// Euler is the Jacobian-free version above. Throws std::invalid_argument for an unknown name.
-std::unique_ptr<ode::Integrator> make_integrator(std::string_view name, const NewtonKrylovSettings& newton = {});
+/// The integrator for a system without a Jacobian (a particle-fluid scene): every name of
+/// integrator_names(); backward Euler is the Jacobian-free version above. Throws
+/// std::invalid_argument for an unknown name.
+std::unique_ptr<Integrator> make_jacobian_free_integrator(std::string_view name, const NewtonKrylovSettings& newton = {});
 
-}  // namespace jellysim::sph
+}  // namespace jellysim::ode

@@ -1,10 +1,10 @@
-#include "jellysim/coupling/gmres.hpp"
+#include "jellysim/ode/gmres.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace jellysim::coupling {
+namespace jellysim::ode {
 
 namespace {
 
@@ -119,4 +119,4 @@ GmresReport gmres_from_zero(const LinearOperator& apply, const Eigen::VectorXd& 
   return run_gmres(apply, b, x, tolerance, max_iterations, restart, &coefficients);
 }
 
-}  // namespace jellysim::coupling
+}  // namespace jellysim::ode

@@ -1,13 +1,13 @@
-#include "jellysim/sph/backward_euler.hpp"
+#include "jellysim/ode/newton_krylov.hpp"
 
-#include "jellysim/coupling/gmres.hpp"
+#include "jellysim/ode/gmres.hpp"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-namespace jellysim::sph {
+namespace jellysim::ode {
 
 void validate(const NewtonKrylovSettings& s) {
   const auto require = [](bool ok, const char* what) {
@@ -47,11 +47,11 @@ JacobianFreeBackwardEuler::Newton JacobianFreeBackwardEuler::newton_iteration(co
   if (iteration > 0 && converged(residual_, y, y1)) return Newton::converged;
   rhs_ = -residual_;
   delta_.setZero(y1.size());
-  const coupling::LinearOperator op = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+  const LinearOperator op = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     apply_iteration_matrix(system, t1, dt, y1, v, out);
   };
-  const coupling::GmresReport report =
-      coupling::gmres(op, rhs_, delta_, settings_.gmres_tolerance, settings_.max_gmres_iterations, settings_.gmres_restart);
+  const GmresReport report =
+      gmres(op, rhs_, delta_, settings_.gmres_tolerance, settings_.max_gmres_iterations, settings_.gmres_restart);
   last_gmres_ += report.iterations;
   if (!delta_.allFinite()) return Newton::failed;
   y1 += delta_;
@@ -76,9 +76,9 @@ bool JacobianFreeBackwardEuler::converged(const ode::Vector& v, const ode::Vecto
   return ode::error_norm(v, y, y1, settings_.atol, settings_.rtol) <= 1.0;
 }
 
-std::unique_ptr<ode::Integrator> make_integrator(std::string_view name, const NewtonKrylovSettings& newton) {
+std::unique_ptr<Integrator> make_jacobian_free_integrator(std::string_view name, const NewtonKrylovSettings& newton) {
   if (name == "backward-euler") return std::make_unique<JacobianFreeBackwardEuler>(newton);
-  return ode::make_integrator(name);
+  return make_integrator(name);
 }
 
-}  // namespace jellysim::sph
+}  // namespace jellysim::ode
