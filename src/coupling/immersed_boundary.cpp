@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "jellysim/elastic/forces.hpp"
+#include "jellysim/elastic/spring_assembly.hpp"
 #include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::coupling {
@@ -220,46 +220,15 @@ CoupledStepReport ImmersedBoundary::step(double dt_s) {
 }
 
 void ImmersedBoundary::compute_forces(std::vector<Vec2>& force) const {
-  const auto& x = body_.points.position;
-  force.assign(x.size(), Vec2{});
-  const auto& lin = body_.linear;
-  for (std::size_t s = 0; s < lin.size(); ++s) {
-    const Vec2 f = elastic::linear_spring_force(x[lin.i[s]], x[lin.j[s]], lin.stiffness[s], lin.rest_length[s]);
-    force[lin.i[s]] += f;
-    force[lin.j[s]] -= f;
-  }
-  const auto& ang = body_.angular;
-  for (std::size_t s = 0; s < ang.size(); ++s) {
-    const elastic::AngularSpringForce f =
-        elastic::angular_spring_force(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
-    force[ang.i[s]] += f.on_i;
-    force[ang.j[s]] += f.on_j;
-    force[ang.k[s]] += f.on_k;
-  }
+  force.assign(body_.points.size(), Vec2{});
+  elastic::add_spring_forces(body_, body_.points.position, force);
 }
 
 void ImmersedBoundary::assemble_stiffness(Eigen::SparseMatrix<double>& k) const {
-  const auto& x = body_.points.position;
   std::vector<Triplet> t;
-  const auto& lin = body_.linear;
-  for (std::size_t s = 0; s < lin.size(); ++s) {
-    const int i = lin.i[s], j = lin.j[s];
-    const Mat2 d =
-        elastic::linear_spring_force_and_jacobian(x[i], x[j], lin.stiffness[s], lin.rest_length[s]).d_on_i_d_xi;
-    add_block(t, i, i, d);
-    add_block(t, i, j, -d);
-    add_block(t, j, i, -d);
-    add_block(t, j, j, d);
-  }
-  const auto& ang = body_.angular;
-  for (std::size_t s = 0; s < ang.size(); ++s) {
-    const int idx[3] = {ang.i[s], ang.j[s], ang.k[s]};
-    const elastic::AngularSpringForce f = elastic::angular_spring_force_and_jacobian(
-        x[idx[0]], x[idx[1]], x[idx[2]], ang.stiffness[s], ang.rest_angle[s]);
-    for (int p = 0; p < 3; ++p)
-      for (int q = 0; q < 3; ++q) add_block(t, idx[p], idx[q], f.jacobian[p][q]);
-  }
-  const auto n = static_cast<Eigen::Index>(2 * x.size());
+  elastic::for_each_spring_jacobian_block(body_, body_.points.position,
+                                          [&t](int a, int b, const Mat2& d) { add_block(t, a, b, d); });
+  const auto n = static_cast<Eigen::Index>(2 * body_.points.size());
   k.resize(n, n);
   k.setFromTriplets(t.begin(), t.end());
 }

@@ -1,6 +1,7 @@
 #include "jellysim/elastic/body.hpp"
 
 #include "jellysim/elastic/forces.hpp"
+#include "jellysim/elastic/spring_assembly.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -103,23 +104,6 @@ double elastic_energy(const Body& body) {
   return e;
 }
 
-void add_spring_forces(const Body& body, const std::vector<Vec2>& x, std::vector<Vec2>& force) {
-  const auto& lin = body.linear;
-  for (std::size_t s = 0; s < lin.size(); ++s) {
-    const Vec2 f = linear_spring_force(x[lin.i[s]], x[lin.j[s]], lin.stiffness[s], lin.rest_length[s]);
-    force[lin.i[s]] += f;
-    force[lin.j[s]] -= f;
-  }
-  const auto& ang = body.angular;
-  for (std::size_t s = 0; s < ang.size(); ++s) {
-    const AngularSpringForce f =
-        angular_spring_force(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
-    force[ang.i[s]] += f.on_i;
-    force[ang.j[s]] += f.on_j;
-    force[ang.k[s]] += f.on_k;
-  }
-}
-
 // Drag (eq. 2.17) on every point; gravity (eq. 2.18) on points of finite mass.
 void add_drag_and_gravity(const Body& body, const std::vector<Vec2>& x, const std::vector<Vec2>& v, double t,
                           std::vector<Vec2>& force) {
@@ -145,6 +129,23 @@ Energy energy(const Body& body) {
   }
   e.elastic = elastic_energy(body);
   return e;
+}
+
+void add_spring_forces(const Body& body, const std::vector<Vec2>& x, std::vector<Vec2>& force) {
+  const auto& lin = body.linear;
+  for (std::size_t s = 0; s < lin.size(); ++s) {
+    const Vec2 f = linear_spring_force(x[lin.i[s]], x[lin.j[s]], lin.stiffness[s], lin.rest_length[s]);
+    force[lin.i[s]] += f;
+    force[lin.j[s]] -= f;
+  }
+  const auto& ang = body.angular;
+  for (std::size_t s = 0; s < ang.size(); ++s) {
+    const AngularSpringForce f =
+        angular_spring_force(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
+    force[ang.i[s]] += f.on_i;
+    force[ang.j[s]] += f.on_j;
+    force[ang.k[s]] += f.on_k;
+  }
 }
 
 void accumulate_forces(const Body& body, const std::vector<Vec2>& position, const std::vector<Vec2>& velocity,

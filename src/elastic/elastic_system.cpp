@@ -1,6 +1,7 @@
 #include "jellysim/elastic/elastic_system.hpp"
 
 #include "jellysim/elastic/forces.hpp"
+#include "jellysim/elastic/spring_assembly.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -92,30 +93,6 @@ class JacobianAssembler {
   std::vector<Triplet>& out_;
 };
 
-void add_linear_springs(const Body& body, const std::vector<Vec2>& x, JacobianAssembler& jac) {
-  const auto& lin = body.linear;
-  for (std::size_t s = 0; s < lin.size(); ++s) {
-    const int i = lin.i[s], j = lin.j[s];
-    const Mat2 d = linear_spring_force_and_jacobian(x[i], x[j], lin.stiffness[s], lin.rest_length[s]).d_on_i_d_xi;
-    jac.add_position_block(i, i, d);
-    jac.add_position_block(i, j, -d);
-    jac.add_position_block(j, i, -d);
-    jac.add_position_block(j, j, d);
-  }
-}
-
-void add_angular_springs(const Body& body, const std::vector<Vec2>& x, JacobianAssembler& jac) {
-  const auto& ang = body.angular;
-  for (std::size_t s = 0; s < ang.size(); ++s) {
-    const int idx[3] = {ang.i[s], ang.j[s], ang.k[s]};
-    const AngularSpringForce f =
-        angular_spring_force_and_jacobian(x[idx[0]], x[idx[1]], x[idx[2]], ang.stiffness[s], ang.rest_angle[s]);
-    for (int p = 0; p < 3; ++p) {
-      for (int q = 0; q < 3; ++q) jac.add_position_block(idx[p], idx[q], f.jacobian[p][q]);
-    }
-  }
-}
-
 // Drag (eq. 2.17): ∂F/∂v = -κ_d I. The fluid velocity is treated as frozen: its dependence on the
 // point's position (∂v_fluid/∂x) is left out of the Jacobian.
 void add_drag(const Body& body, JacobianAssembler& jac) {
@@ -201,8 +178,7 @@ void ElasticSystem::compute_jacobian(double t, const ode::Vector& y, ode::Sparse
   read_state(body_, y, t, x_, v_);
   JacobianAssembler assembler(body_, triplets_);
   assembler.add_kinematics();
-  add_linear_springs(body_, x_, assembler);
-  add_angular_springs(body_, x_, assembler);
+  for_each_spring_jacobian_block(body_, x_, [&](int a, int b, const Mat2& d) { assembler.add_position_block(a, b, d); });
   add_drag(body_, assembler);
   store(triplets_, dimension(), jac);
 }
