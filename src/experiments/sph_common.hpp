@@ -1,8 +1,8 @@
 #pragma once
-// Shared pieces of the particle-fluid experiments (thesis §8.1.1-8.1.2): reading their TOML
-// sections with range checks, building the Figure 8.1 bar, the fluid and the larva, recording
-// frames, and writing frames.csv and frame strips.
+// Shared pieces of the particle-fluid experiments (thesis §8.1.1-8.1.2): recording frames and
+// writing frames.csv and frame strips (the scene layer reads their sections and builds the larva).
 #include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/render/plot.hpp"
 #include "jellysim/sph/bodies.hpp"
 #include "jellysim/sph/initial_conditions.hpp"
@@ -13,25 +13,14 @@
 
 namespace jellysim::experiments::sph_common {
 
-/// [time] plus `duration`: integrator, dt, adaptive, atol, rtol, error_control, frame_interval,
-/// thin_boundary_limit; [output] max_speed.
-sph::RunSettings read_run_settings(const io::Config& c);
-/// [bar] as in swinging-bar (length, width, segments, point_mass, stiffness, pivot, gravity).
-elastic::BarSpec read_bar(const io::Config& c);
-/// [collision] separation, trap_radius; run.threads (0: one per core).
-void read_collision(const io::Config& c, sph::Scene& scene);
-/// [fluid] smoothing_radius, rest_density, gas_constant, viscosity.
-sph::SphParameters read_fluid_parameters(const io::Config& c);
-/// [larva] section.
-sph::LarvaSpec read_larva(const io::Config& c);
-
-/// Builds the mosquito-larva scene ([box], [fluid], [larva], [collision], run.threads); also
-/// reports the mass search. Throws InputError for invalid input.
-struct LarvaScene {
-  sph::Scene scene;
-  sph::MassSearch mass;
-};
-LarvaScene build_larva_scene(const io::Config& c, double gas_constant);
+// The sections' rules and readers are the scene layer's (scene/particle_scenes.hpp).
+using scene::build_larva_scene;
+using scene::LarvaScene;
+using scene::read_bar;
+using scene::read_collision;
+using scene::read_fluid_parameters;
+using scene::read_larva;
+inline sph::RunSettings read_run_settings(const io::Config& c) { return scene::read_particle_run_settings(c); }
 
 /// One recorded frame.
 struct Frame {
@@ -60,9 +49,6 @@ double cpu_seconds();
 
 /// Common key figures of a run; cpu_seconds = processor time of the run (all threads).
 nlohmann::ordered_json run_figures(const sph::RunResult& r, double wall_seconds, double cpu_seconds);
-
-/// Throws InputError when the run settings cannot work (e.g. dt > duration).
-void check_time(const sph::RunSettings& s);
 
 /// An Experiment from its name, description, definition file and prepare function.
 Experiment make_experiment(std::string name, std::string description, std::string definition_path,

@@ -25,7 +25,7 @@ sph::Scene bar_scene(const io::Config& c) {
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
-  s.outline = sph::strip_outline(static_cast<int>(c.integer("bar.segments", 1, 1000)));
+  s.outline = sph::strip_outline(read_bar(c).segments);
   read_collision(c, s);
   return s;
 }

@@ -37,10 +37,10 @@ StreamSetup read_stream(const io::Config& c) {
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
-  s.scene.outline = sph::strip_outline(static_cast<int>(c.integer("bar.segments", 1, 1000)));
+  s.scene.outline = sph::strip_outline(read_bar(c).segments);
   read_collision(c, s.scene);
   s.scene.sph = read_fluid_parameters(c);
-  s.scene.particle_gravity = c.vec2("fluid.gravity");
+  s.scene.particle_gravity = scene::Reader(c, scene::particle_scene_rules()).vec2("fluid.gravity");
   s.lo = c.vec2("box.min");
   s.hi = c.vec2("box.max");
   if (!(s.hi.x > s.lo.x && s.hi.y > s.lo.y)) throw InputError("field 'box.max' must exceed 'box.min' in both coordinates");

@@ -5,6 +5,7 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/render/plot.hpp"
+#include "jellysim/scene/particle_scenes.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -21,42 +22,21 @@ struct BarScene {
   double max_speed = 1000.0;
 };
 
-sim::TimeSettings read_time_settings(const io::Config& c) {
-  sim::TimeSettings t;
-  t.integrator = c.choice("time.integrator", ode::integrator_names());
-  t.dt = c.number("time.dt", io::Range::positive());
-  t.adaptive = c.boolean("time.adaptive");
-  t.tolerances.atol = c.number("time.atol", io::Range::positive());
-  t.tolerances.rtol = c.number("time.rtol", io::Range::non_negative());
-  t.duration = c.number("duration", io::Range::positive());
-  t.frame_interval = c.number("time.frame_interval", io::Range::positive());
-  if (t.dt > t.duration) {
-    throw InputError("field 'time.dt' = " + io::format_double(t.dt) + " is out of range (0, duration = " +
-                     io::format_double(t.duration) + "]");
-  }
-  return t;
-}
-
 BarScene read_bar_scene(const io::Config& c) {
+  const scene::Reader r(c, scene::particle_scene_rules());
   BarScene s;
-  s.bar.length = c.number("bar.length", io::Range::positive());
-  s.bar.width = c.number("bar.width", io::Range::positive());
-  s.bar.segments = static_cast<int>(c.integer("bar.segments", 1, 10000));
-  s.bar.point_mass = c.number("bar.point_mass", io::Range::positive());
-  s.bar.stiffness = c.number("bar.stiffness", io::Range::positive());
-  s.modulus = c.number("bar.modulus", io::Range::non_negative());
-  s.cross_section = c.number("bar.cross_section", io::Range::non_negative());
+  s.bar = scene::read_bar(c);
+  s.modulus = r.number("bar.modulus");
+  s.cross_section = r.number("bar.cross_section");
   if (s.modulus > 0.0 && s.cross_section <= 0.0) {
     throw InputError("field 'bar.cross_section' = 0 is out of range (0, inf) when bar.modulus > 0");
   }
-  s.bar.angular_stiffness = c.number("bar.angular_stiffness", io::Range::non_negative());
-  s.bar.angle_rad = c.number("bar.angle_deg", io::Range::closed(-360.0, 360.0)) * std::numbers::pi / 180.0;
-  s.bar.pivot = c.vec2("bar.pivot");
-  s.bar.gravity = c.vec2("bar.gravity");
-  s.bar.drag = c.number("bar.drag", io::Range::non_negative());
-  s.time = read_time_settings(c);
+  s.bar.angular_stiffness = r.number("bar.angular_stiffness");
+  s.bar.angle_rad = r.number("bar.angle_deg") * std::numbers::pi / 180.0;
+  s.bar.drag = r.number("bar.drag");
+  s.time = scene::read_time_settings(c);
   s.strip_frames = static_cast<int>(c.integer("output.strip_frames", 1, 64));
-  s.max_speed = c.number("output.max_speed", io::Range::positive());
+  s.max_speed = r.number("output.max_speed");
   return s;
 }
 

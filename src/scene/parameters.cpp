@@ -167,7 +167,8 @@ std::string ParameterTable::reference_markdown() const {
     s << "| key | default | unit | allowed | description |\n|---|---|---|---|---|\n";
     for (const Parameter& p : parameters_) {
       if (table_of(p.key) != table) continue;
-      s << "| `" << p.key << "` | `" << markdown_cell(p.value) << "` | " << markdown_cell(p.unit) << " | "
+      const std::string value = p.value.empty() ? "per scene" : "`" + markdown_cell(p.value) + "`";
+      s << "| `" << p.key << "` | " << value << " | " << markdown_cell(p.unit) << " | "
         << markdown_cell(allowed_values(p)) << " | " << markdown_cell(p.description) << " |\n";
     }
   }

@@ -2,6 +2,7 @@
 
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::scene {
@@ -25,6 +26,13 @@ std::string parameters_reference() {
       "The pipeline of §7.2–7.4: image and mesh sizes, camera, style, which files are written, and the\n"
       "noise of §7.3. The main job starts from these; `experiment stages` sets obj and ply to true.\n";
   page += render_parameters().reference_markdown();
+  page +=
+      "\n## Elastic-bar and particle-fluid scenes (`swinging-bar`, `bar-hits-wall`, `bar-hits-particle`, "
+      "`sph-stream`, `mosquito-larva`, `integrator-cost`)\n\n"
+      "The sections these scenes share follow one set of rules (type, unit, allowed values); each scene\n"
+      "sets its own defaults (`jellysim scenes NAME`). Fields of one experiment alone (its [output]\n"
+      "strip, [wall], [particle], [emitter], [study]) are described in its definition file.\n";
+  page += particle_scene_rules().reference_markdown();
   page +=
       "\n## The viewer's live parameters (`jellysim view`: sliders and scripted `set NAME [INDEX] VALUE`)\n\n"
       "Each is a parameter above (or one of the viewer's own controls) and allows the same values; the\n"

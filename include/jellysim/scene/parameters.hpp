@@ -35,7 +35,8 @@ struct Slider {
 struct Parameter {
   std::string key;          ///< dotted path, e.g. "jellyfish.frequency"
   Type type = Type::number;
-  std::string value;        ///< the default as a TOML value, e.g. "0.7", "[96, 128]", "\"fft\""
+  std::string value;        ///< the default as a TOML value, e.g. "0.7", "[96, 128]", "\"fft\""; empty in a
+                            ///< table of rules whose defaults are each scene's own
   std::string unit;         ///< SI unit ("m", "Hz", "m²/s"); empty: dimensionless or not a number
   io::Range range{};        ///< numbers, integers, vec2 and integers' elements
   std::vector<std::string> choices{};  ///< choice and choices
@@ -73,7 +74,7 @@ class ParameterTable {
   /// The reference page (docs/parameters.md's section for this table): a Markdown table per TOML
   /// table with key, default, unit, allowed values and description.
   std::string reference_markdown() const;
-  /// The built-in scene, parsed ("built-in <name> scene" in messages).
+  /// The built-in scene, parsed ("built-in <name> scene" in messages); only for tables with defaults.
   io::Config defaults() const;
 
  private:

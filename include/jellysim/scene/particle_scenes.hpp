@@ -1,0 +1,41 @@
+#pragma once
+// The elastic-bar and particle-fluid scenes (thesis §8.1.1–8.1.2: swinging-bar, bar-hits-wall,
+// bar-hits-particle, sph-stream, mosquito-larva, integrator-cost): the rules of the sections they
+// share and the readers that build their settings. The rules (type, unit, allowed range, meaning)
+// are one table; the default values are each scene's own, in its definition file (`jellysim scenes
+// NAME`), because the scenes differ (the larva's step is not the bar's).
+#include "jellysim/config/config.hpp"
+#include "jellysim/elastic/bar.hpp"
+#include "jellysim/scene/parameters.hpp"
+#include "jellysim/sim/time_stepping.hpp"
+#include "jellysim/sph/bodies.hpp"
+#include "jellysim/sph/initial_conditions.hpp"
+#include "jellysim/sph/scene.hpp"
+
+namespace jellysim::scene {
+
+/// duration, [time], [output] max_speed, [bar], [collision], [run], [box], [fluid], [larva].
+const ParameterTable& particle_scene_rules();
+
+/// duration and [time] integrator, dt, adaptive, atol, rtol, frame_interval; dt <= duration.
+sim::TimeSettings read_time_settings(const io::Config& c);
+/// read_time_settings plus [time] error_control, thin_boundary_limit and [output] max_speed.
+sph::RunSettings read_particle_run_settings(const io::Config& c);
+/// [bar] length, width, segments, point_mass, stiffness, pivot, gravity (the Figure 8.1 bar).
+elastic::BarSpec read_bar(const io::Config& c);
+/// [collision] separation, trap_radius; run.threads (0: one per core).
+void read_collision(const io::Config& c, sph::Scene& scene);
+/// [fluid] smoothing_radius, rest_density, gas_constant, viscosity.
+sph::SphParameters read_fluid_parameters(const io::Config& c);
+/// [larva] (without gravity, which build_larva_scene applies).
+sph::LarvaSpec read_larva(const io::Config& c);
+
+/// The mosquito-larva scene ([box], [fluid], [larva], [collision], run.threads) with the fluid's
+/// gas constant `gas_constant`; also reports the particle-mass search. Throws InputError.
+struct LarvaScene {
+  sph::Scene scene;
+  sph::MassSearch mass;
+};
+LarvaScene build_larva_scene(const io::Config& c, double gas_constant);
+
+}  // namespace jellysim::scene
