@@ -115,12 +115,22 @@ int list_definitions(const std::string& name) {
     return 0;
   }
   const auto& e = js::experiments::find_experiment(name);
-  std::cout << js::experiments::definition_text(e.definition_path);
+  std::string text = js::experiments::definition_text(e.definition_path);
   if (e.renders) {
-    std::cout << "\n# The 3D pipeline's [render] section: every field with its default (a [render] table above\n"
-                 "# overrides some of them).\n"
-              << js::scene::render_parameters().scene_toml();
+    // The definition's own [render] lines are folded into the full section below (one [render]
+    // table, so the output is a scene file that loads).
+    std::istringstream lines(text);
+    std::string kept;
+    bool in_render = false;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.starts_with("[")) in_render = line.starts_with("[render]") || line.starts_with("[render.");
+      if (!in_render) kept += line + "\n";
+    }
+    const js::io::Config resolved = js::experiments::default_config(e);
+    text = kept + "\n# The 3D pipeline's [render] section: every field with this scene's value (docs/parameters.md).\n" +
+           js::scene::render_parameters().scene_toml(&resolved);
   }
+  std::cout << text;
   return 0;
 }
 

@@ -359,6 +359,8 @@ std::vector<std::string> Config::choices(std::string_view key, const std::vector
   return out;
 }
 
+std::string Config::literal(std::string_view key) const { return value_text(impl_->node(key)); }
+
 nlohmann::ordered_json Config::to_json() const { return node_to_json(impl_->table); }
 
 std::string Config::to_toml() const {

@@ -281,14 +281,14 @@ SweepPoint summarise_frequency(const std::vector<SweepRun>& runs, std::size_t fr
 
 std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
-  const std::vector<double> frequencies = ctx.config.numbers("sweep.frequencies", io::Range{0.0, 100.0, true, false});
+  const std::vector<double> frequencies = ctx.config.numbers("sweep.frequencies", scene::jellyfish_scene().at("jellyfish.frequency").range);
   const int placements = static_cast<int>(ctx.config.integer("sweep.placements", 1, 64));
-  const int threads_wanted = static_cast<int>(ctx.config.integer("sweep.threads", 0, 256));
+  const int threads_wanted = static_cast<int>(ctx.config.integer("sweep.threads", 0, 64));
   return [base, frequencies, placements, threads_wanted, ctx](const io::OutputDir& out) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<SweepRun> runs = plan_sweep(base, frequencies, placements);
-    // The pool's threads (at most 64), no more than there are runs.
-    const int threads = std::min({resolve_threads(std::min(threads_wanted, 64)), 64, static_cast<int>(runs.size())});
+    // The pool's threads, no more than there are runs.
+    const int threads = std::min(resolve_threads(threads_wanted), static_cast<int>(runs.size()));
     WorkerPool pool(std::max(1, threads));
     pool.run_tasks(runs.size(), [&](std::size_t k) {
       jellyfish::SwimSettings s = base;

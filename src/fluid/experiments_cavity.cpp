@@ -89,21 +89,26 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
   const int n = settings.tracers_per_side;
   Tracers tracers = n > 0 ? Tracers::lattice({0.05 * L, 0.05 * L}, {0.95 * L, 0.95 * L}, n, n) : Tracers{};
   const bool frames = settings.on_frame && settings.frame_interval_s > 0.0;
-  // Frames (when asked for) on the shared clock; the run stops at max_time_s or at a steady state.
-  sim::FrameClock clock(frames ? settings.frame_interval_s : 0.0, settings.max_time_s, 1e-12);
+  // Frames (when asked for) on the shared clock; the run stops at max_time_s (exactly: no end
+  // tolerance, a last sliver step is taken) or at a steady state.
+  sim::FrameClock clock(frames ? settings.frame_interval_s : 0.0, settings.max_time_s, 1e-12,
+                        sim::FrameClock::Ending::at_duration, 0.0);
   sim::ClockedRun loop;
   loop.time = [&] { return solver->time_s(); };
   loop.frame = [&](std::int64_t) {
     if (frames) settings.on_frame(solver->time_s(), solver->state(), tracers.positions());
     return std::string();
   };
-  loop.step = [&](double t_target) -> sim::StepResult {
+  loop.step = [&](double) -> sim::StepResult {
     double dt = settings.time_step_s;
     if (dt <= 0.0) {
       dt = settings.solver == "eulerian" ? solver->stable_time_step() : grid.dx() / U;
       if (!std::isfinite(dt)) dt = settings.safety_factor * grid.dx() / U;  // fluid at rest
     }
-    if (solver->time_s() + dt >= t_target - 1e-12) dt = t_target - solver->time_s();
+    dt = std::min(dt, settings.max_time_s - solver->time_s());
+    // Land on the next frame time (not capped: a frame just past the end is landed on too).
+    const double frame_time = clock.scheduled_frame_time();
+    if (frames && solver->time_s() + dt >= frame_time - 1e-12) dt = frame_time - solver->time_s();
     const StepReport report = solver->step(dt);
     tracers.advect(solver->state().velocity, solver->settings().boundaries, dt);
     result.steps += report.substeps;

@@ -410,7 +410,11 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
     }
     return {};
   };
-  stats.failure = sim::run_frames(clock, loop, progress).failure;
+  // Progress counts the coupling's steps (also those taken before run(), e.g. by the viewer).
+  const sim::ProgressCallback steps_progress =
+      progress ? sim::ProgressCallback([&](double t, double d, std::int64_t) { progress(t, d, coupling_->steps()); })
+               : sim::ProgressCallback();
+  stats.failure = sim::run_frames(clock, loop, steps_progress).failure;
   stats.simulated_seconds = time_s();
   stats.steps = coupling_->steps();
   stats.mirror_symmetric = mirror_active_;

@@ -37,11 +37,13 @@ std::string join(const std::vector<std::string>& words, const std::string& separ
   return s;
 }
 
+/// The smallest (direction −1) or largest (+1) integer the bound v allows, clamped to ±2^62.
 std::int64_t integer_bound(double v, bool open, int direction) {
-  if (!std::isfinite(v)) return direction < 0 ? std::numeric_limits<std::int64_t>::min()
-                                              : std::numeric_limits<std::int64_t>::max();
-  const auto i = static_cast<std::int64_t>(std::llround(v));
-  return open ? i - direction : i;
+  constexpr double kLimit = 4611686018427387904.0;  // 2^62: exact in a double, far from overflow
+  if (!(std::abs(v) < kLimit)) return static_cast<std::int64_t>(std::copysign(kLimit, v));
+  double i = direction < 0 ? std::ceil(v) : std::floor(v);
+  if (open && i == v) i -= direction;
+  return static_cast<std::int64_t>(i);
 }
 
 /// The line's comment: unit and allowed values, then the description.
@@ -139,7 +141,7 @@ const Parameter& ParameterTable::at(std::string_view key) const {
   throw std::logic_error("parameter table " + name_ + " has no '" + std::string(key) + "'");
 }
 
-std::string ParameterTable::scene_toml() const {
+std::string ParameterTable::scene_toml(const io::Config* values) const {
   constexpr std::size_t kCommentColumn = 31, kLineWidth = 110;
   std::ostringstream s;
   s << preamble_;
@@ -149,7 +151,7 @@ std::string ParameterTable::scene_toml() const {
     first = false;
     for (const Parameter& p : parameters_) {
       if (table_of(p.key) != table) continue;
-      std::string line = leaf_of(p.key) + " = " + p.value;
+      std::string line = leaf_of(p.key) + " = " + (values ? values->literal(p.key) : p.value);
       line.resize(std::max(line.size() + 1, kCommentColumn), ' ');
       const std::size_t width = kLineWidth - std::min(line.size(), kLineWidth - 40) - 2;
       const std::vector<std::string> lines = wrap(comment(p), width);

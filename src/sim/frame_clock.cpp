@@ -3,12 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace jellysim::sim {
 
-FrameClock::FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending)
-    : interval_(interval_s), duration_(duration_s), tolerance_(tolerance_s), end_(duration_s) {
+FrameClock::FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending, double end_tolerance_s)
+    : interval_(interval_s),
+      duration_(duration_s),
+      tolerance_(tolerance_s),
+      end_tolerance_(end_tolerance_s < 0.0 ? tolerance_s : end_tolerance_s),
+      end_(duration_s) {
   if (interval_ <= 0.0) return;
+  if (!(duration_ / interval_ <= 4503599627370496.0))  // 2^52: frame indices stay exact
+    throw std::invalid_argument("frame interval " + std::to_string(interval_) + " s is too small for a duration of " +
+                                std::to_string(duration_) + " s");
   switch (ending) {
     case Ending::at_duration:  // the frame at the duration, or capped at it
       last_ = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((duration_ - tolerance_) / interval_)));
@@ -38,7 +47,11 @@ bool FrameClock::due(double t) const {
 }
 
 bool FrameClock::finished(double t) const {
-  return t >= end_ - tolerance_ && (interval_ <= 0.0 || next_ > last_);
+  return t >= end_ - end_tolerance_ && (interval_ <= 0.0 || next_ > last_);
+}
+
+double FrameClock::scheduled_frame_time() const {
+  return interval_ <= 0.0 ? std::numeric_limits<double>::infinity() : static_cast<double>(next_) * interval_;
 }
 
 double FrameClock::target() const {

@@ -97,14 +97,13 @@ TEST(SceneParameters, EveryBoundIsEnforcedWithTheFieldAndRangeNamed) {
         io::Config c = t->defaults();
         std::ostringstream value;
         value.precision(17);
-        value << v;
+        if (p.type == Type::integer) value << static_cast<long long>(v);
+        else value << v;
         if (p.type == Type::number && value.str().find_first_of(".e") == std::string::npos) value << ".0";
         c.set(p.key + "=" + value.str());
         const std::string message = error_of([&] { read_by_type(scene::Reader(c, *t), p); });
         EXPECT_NE(message.find(p.key), std::string::npos) << p.key << " = " << v << ": " << message;
-        if (p.type == Type::number) {
-          EXPECT_NE(message.find(p.range.describe()), std::string::npos) << p.key << ": " << message;
-        }
+        EXPECT_NE(message.find(p.range.describe()), std::string::npos) << p.key << ": " << message;
         ++checked;
       }
     }

@@ -85,6 +85,8 @@ class Config {
   std::vector<std::string> choices(std::string_view key, const std::vector<std::string>& allowed) const;
   std::vector<double> numbers(std::string_view key, Range range = {}) const;
 
+  /// The value of `key` as TOML text (e.g. 0.7, "fft", [96, 128]); throws InputError when absent.
+  std::string literal(std::string_view key) const;
   /// The resolved configuration as JSON (for summary.json).
   nlohmann::ordered_json to_json() const;
   /// The resolved configuration as TOML text (can be fed back to `jellysim run`).

@@ -69,8 +69,9 @@ class ParameterTable {
   const Parameter* find(std::string_view key) const;
 
   /// The built-in scene as TOML: the preamble, then every parameter with its default and a comment
-  /// giving its description, unit and allowed values.
-  std::string scene_toml() const;
+  /// giving its description, unit and allowed values. With `values`, each parameter's value is
+  /// taken from there instead (a resolved configuration).
+  std::string scene_toml(const io::Config* values = nullptr) const;
   /// The reference page (docs/parameters.md's section for this table): a Markdown table per TOML
   /// table with key, default, unit, allowed values and description.
   std::string reference_markdown() const;

@@ -21,8 +21,11 @@ class FrameClock {
                     ///< one frame): the jellyfish tank
   };
   /// interval_s <= 0: no frames but the first (and, on an early stop, the last). tolerance_s: a
-  /// time within it of a frame time counts as on it (guards against round-off).
-  FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending = Ending::at_duration);
+  /// time within it of a frame time counts as on it (guards against round-off); end_tolerance_s
+  /// the same for the end of the run (negative: tolerance_s). Throws std::invalid_argument when
+  /// the duration holds more than 2^52 intervals.
+  FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending = Ending::at_duration,
+             double end_tolerance_s = -1.0);
 
   double duration() const { return duration_; }
   /// Where the run ends: the duration, or with Ending::nearest_frame the last frame's time.
@@ -40,10 +43,12 @@ class FrameClock {
   bool finished(double t) const;
   /// What the next step must not pass: the next frame's time (or the duration).
   double target() const;
+  /// The next frame's time n·interval, not capped at the duration (inf without frames).
+  double scheduled_frame_time() const;
   void frame_emitted() { ++next_; }
 
  private:
-  double interval_, duration_, tolerance_;
+  double interval_, duration_, tolerance_, end_tolerance_;
   std::int64_t last_ = 0;  ///< index of the last frame
   double end_ = 0.0;
   std::int64_t next_ = 0;
