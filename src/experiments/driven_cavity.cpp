@@ -1,5 +1,6 @@
 // Lid-driven cavity, thesis §8.1.3 and Figure 8.7, compared with Ghia, Ghia & Shin (1982).
 #include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 #include "jellysim/fluid/experiments_cavity.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/vtk_fields.hpp"
@@ -10,36 +11,8 @@ namespace {
 
 using io::write_via_temporary;
 
-struct CavityScene {
-  fluid::DrivenCavitySettings cavity;
-  bool figure_enabled = true;
-  fluid::CavityFigureSettings figure;
-};
-
-CavityScene read_cavity_scene(const io::Config& c) {
-  CavityScene s;
-  s.cavity.solver = c.choice("solver", {"eulerian", "semi-lagrangian"});
-  s.cavity.reynolds = c.number("re", io::Range{0.0, 1e5, true, false});
-  s.cavity.cells = static_cast<int>(c.integer("grid", 4, 1024));
-  s.cavity.pressure_solver = c.choice("cavity.pressure_solver", {"sor", "multigrid", "direct", "fft"});
-  s.cavity.pressure_tolerance = c.number("cavity.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
-  s.cavity.time_step_s = c.number("cavity.time_step", io::Range::non_negative());
-  s.cavity.safety_factor = c.number("cavity.safety_factor", io::Range{0.0, 1.0, true, false});
-  s.cavity.max_time_s = c.number("cavity.max_time", io::Range::positive());
-  s.cavity.steady_tolerance = c.number("cavity.steady_tolerance", io::Range::positive());
-  s.cavity.frame_interval_s = c.number("output.frame_interval", io::Range::non_negative());
-  s.cavity.tracers_per_side = static_cast<int>(c.integer("output.tracers_per_side", 0, 1000));
-  s.figure_enabled = c.boolean("figure_8_7.enabled");
-  s.figure.viscosities_m2_per_s = c.numbers("figure_8_7.viscosities", io::Range::positive());
-  s.figure.cells = static_cast<int>(c.integer("figure_8_7.grid", 4, 256));
-  s.figure.time_step_s = c.number("figure_8_7.time_step", io::Range::positive());
-  s.figure.duration_s = c.number("figure_8_7.duration", io::Range::positive());
-  s.figure.pressure_solver = s.cavity.pressure_solver;
-  if (s.figure_enabled && s.figure.viscosities_m2_per_s.empty()) {
-    throw InputError("field 'figure_8_7.viscosities' must list at least one viscosity when figure_8_7.enabled");
-  }
-  return s;
-}
+using scene::CavityScene;
+using scene::read_cavity_scene;
 
 void write_profile_csv(const io::OutputDir& out, const std::string& name, const char* position, const char* velocity,
                        const fluid::CentrelineProfile& p) {

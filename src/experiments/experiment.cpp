@@ -4,6 +4,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 
 #include <stdexcept>
 
@@ -65,8 +66,8 @@ std::string_view embedded_text(std::string_view path) {
 }
 
 std::string definition_text(std::string_view path) {
-  // The jellyfish scene is its parameter table (scenes/jellyfish.toml is generated from it).
-  if (path == kJellyfishScenePath) return scene::jellyfish_scene().scene_toml();
+  // Definitions that are parameter tables (scenes/jellyfish.toml and others are generated from them).
+  if (const scene::ParameterTable* table = scene::table_for_definition(path)) return table->scene_toml();
   return std::string(embedded_text(path));
 }
 

@@ -14,6 +14,7 @@
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/parallel.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 #include "jellysim/jellyfish/fluidless.hpp"
 #include "jellysim/render/plot.hpp"
 
@@ -28,30 +29,10 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 
 // ---------------------------------------------------------------- oval membrane (Figs 8.8, 8.9)
 
-coupling::OvalMembraneSettings read_membrane(const io::Config& c) {
-  coupling::OvalMembraneSettings s;
-  s.solver = c.choice("solver", {"eulerian", "semi-lagrangian"});
-  s.cells = static_cast<int>(c.integer("membrane.cells", 4, 1024));
-  s.box_m = c.number("membrane.box", io::Range::positive());
-  s.viscosity_m2_per_s = c.number("membrane.viscosity", io::Range::non_negative());
-  s.density_kg_per_m3 = c.number("membrane.density", io::Range::positive());
-  s.stiffness = c.number("membrane.stiffness", io::Range::positive());
-  const Vec2 axes = c.vec2("membrane.semi_axes");
-  if (!(axes.x > 0 && axes.y > 0 && axes.x < 0.5 * s.box_m && axes.y < 0.5 * s.box_m))
-    throw InputError("field 'membrane.semi_axes' must be positive and below half the box");
-  s.semi_axis_x_m = axes.x;
-  s.semi_axis_y_m = axes.y;
-  s.dt_s = c.number("membrane.dt", io::Range::positive());
-  s.duration_s = c.number("duration", io::Range::positive());
-  s.frame_interval_s = c.number("membrane.frame_interval", io::Range::positive());
-  s.coupling.scheme = *coupling::scheme_from_string(c.choice("membrane.scheme", {"explicit", "semi-implicit"}));
-  s.coupling.kernel = *coupling::kernel_from_string(c.choice("membrane.kernel", {"bilinear", "peskin4"}));
-  return s;
-}
-
 std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context& ctx) {
-  const coupling::OvalMembraneSettings base = read_membrane(ctx.config);
-  const auto refinement = ctx.config.integers("refinement.cells", 4, 1024);
+  const scene::MembraneScene membrane = scene::read_membrane_scene(ctx.config);
+  const coupling::OvalMembraneSettings base = membrane.membrane;
+  const std::vector<std::int64_t> refinement = membrane.refinement_cells;
   return [base, refinement, ctx](const io::OutputDir& out) {
     const coupling::MembraneRun run = coupling::run_oval_membrane(base);
     io::CsvWriter area({"t", "area", "area_ratio", "aspect_ratio"});

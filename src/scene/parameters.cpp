@@ -110,6 +110,7 @@ std::string allowed_values(const Parameter& p) {
     case Type::integers:
       return (p.length > 0 ? std::to_string(p.length) + " integers, each in " : "integers, each in ") +
              p.range.describe();
+    case Type::numbers: return "numbers, each in " + p.range.describe();
     case Type::vec2: {
       const bool any = !std::isfinite(p.range.min) && !std::isfinite(p.range.max);
       return any ? "[x, y]" : "[x, y], each in " + p.range.describe();
@@ -228,6 +229,10 @@ std::vector<std::int64_t> Reader::integers(std::string_view key) const {
   return v;
 }
 
+std::vector<double> Reader::numbers(std::string_view key) const {
+  return config_.numbers(key, expect(key, Type::numbers).range);
+}
+
 std::vector<std::string> Reader::choices(std::string_view key) const {
   const Parameter& p = expect(key, Type::choices);
   std::vector<std::string> v = config_.choices(key, p.choices);
@@ -248,6 +253,7 @@ void Reader::validate_all() const {
       case Type::choice: choice(p.key); break;
       case Type::vec2: vec2(p.key); break;
       case Type::integers: integers(p.key); break;
+      case Type::numbers: numbers(p.key); break;
       case Type::choices: choices(p.key); break;
       case Type::tables: config_.array_size(p.key); break;
     }

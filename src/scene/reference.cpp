@@ -4,6 +4,7 @@
 #include "jellysim/scene/live_parameters.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 
 namespace jellysim::scene {
 
@@ -26,6 +27,12 @@ std::string parameters_reference() {
       "The pipeline of §7.2–7.4: image and mesh sizes, camera, style, which files are written, and the\n"
       "noise of §7.3. The main job starts from these; `experiment stages` sets obj and ply to true.\n";
   page += render_parameters().reference_markdown();
+  page +=
+      "\n## Lid-driven cavity (`jellysim experiment driven-cavity`; experiments/driven-cavity.toml)\n";
+  page += driven_cavity_scene().reference_markdown();
+  page +=
+      "\n## Oval membrane (`jellysim experiment oval-membrane`; experiments/oval-membrane.toml)\n";
+  page += oval_membrane_scene().reference_markdown();
   page +=
       "\n## Elastic-bar and particle-fluid scenes (`swinging-bar`, `bar-hits-wall`, `bar-hits-particle`, "
       "`sph-stream`, `mosquito-larva`, `integrator-cost`)\n\n"

@@ -16,6 +16,7 @@
 #include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 
 namespace {
 
@@ -33,7 +34,8 @@ std::string read_source_file(const std::string& relative) {
 
 const std::vector<const ParameterTable*>& tables() {
   static const std::vector<const ParameterTable*> all{&scene::jellyfish_scene(), &scene::render_parameters(),
-                                                      &scene::viewer_controls()};
+                                                      &scene::viewer_controls(), &scene::driven_cavity_scene(),
+                                                      &scene::oval_membrane_scene()};
   return all;
 }
 
@@ -61,9 +63,16 @@ TEST(SceneParameters, ReferencePageIsCurrent) {
       << "docs/parameters.md is stale: build/release/jellysim scenes --reference > docs/parameters.md";
 }
 
-TEST(SceneParameters, BuiltInSceneFileIsTheTable) {
-  EXPECT_EQ(read_source_file("scenes/jellyfish.toml"), scene::jellyfish_scene().scene_toml())
-      << "scenes/jellyfish.toml is stale: build/release/jellysim scenes jellyfish > scenes/jellyfish.toml";
+TEST(SceneParameters, DefinitionFilesAreTheirTables) {
+  for (const auto& [path, name] : {std::pair{"scenes/jellyfish.toml", "jellyfish"},
+                                   {"experiments/driven-cavity.toml", "driven-cavity"},
+                                   {"experiments/oval-membrane.toml", "oval-membrane"}}) {
+    const ParameterTable* table = scene::table_for_definition(path);
+    ASSERT_NE(table, nullptr) << path;
+    EXPECT_EQ(read_source_file(path), table->scene_toml())
+        << path << " is stale: build/release/jellysim scenes " << name << " > " << path;
+  }
+  EXPECT_EQ(scene::table_for_definition("experiments/kinematics.toml"), nullptr);
 }
 
 TEST(SceneParameters, EveryDefaultIsAllowedAndReadable) {

@@ -49,10 +49,8 @@ const Experiment& find_experiment(const std::string& name);
 io::Config default_config(const Experiment& experiment);
 /// Text of an embedded file; throws std::logic_error when absent (a build error).
 std::string_view embedded_text(std::string_view path);
-/// The built-in jellyfish scene's path; its text is generated from the scene layer's parameter table.
-inline constexpr std::string_view kJellyfishScenePath = "scenes/jellyfish.toml";
-/// The text of a scene or experiment definition: the embedded file, or for the jellyfish scene the
-/// text generated from its parameter table.
+/// The text of a scene or experiment definition: the embedded file, or for a definition that is a
+/// parameter table (the jellyfish scene, driven-cavity, oval-membrane) the text generated from it.
 std::string definition_text(std::string_view path);
 
 /// Writes summary.json: status, version, command, key figures and the resolved configuration.

@@ -21,6 +21,7 @@ enum class Type {
   choice,    ///< one of `choices`
   vec2,      ///< [x, y], each within `range`
   integers,  ///< `length` integers (0: any non-empty count), each within `range`
+  numbers,   ///< an array of numbers (possibly empty), each within `range`
   choices,   ///< `length` strings (0: any non-empty count), each one of `choices`
   tables,    ///< an array of tables (e.g. [[objects]]), validated by the scene's reader
 };
@@ -101,6 +102,7 @@ class Reader {
   std::string choice(std::string_view key) const;
   Vec2 vec2(std::string_view key) const;
   std::vector<std::int64_t> integers(std::string_view key) const;
+  std::vector<double> numbers(std::string_view key) const;
   std::vector<std::string> choices(std::string_view key) const;
 
   /// Checks every parameter of the table present in the configuration by its type and range.
