@@ -3,25 +3,15 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/fluid/experiments_taylor_green.hpp"
 #include "jellysim/render/plot.hpp"
+#include "jellysim/scene/study_scenes.hpp"
 
 #include <cmath>
 
 namespace jellysim::experiments {
 namespace {
 
-const std::vector<std::string> kFluidSolvers = {"eulerian", "semi-lagrangian"};
-const std::vector<std::string> kPressureSolvers = {"sor", "multigrid", "direct", "fft"};
-
-fluid::TaylorGreen read_flow(const io::Config& c) {
-  return {c.number("flow.length", io::Range::positive()), c.number("flow.speed", io::Range::positive()),
-          c.number("flow.viscosity", io::Range::positive())};
-}
-
-std::vector<int> read_grids(const io::Config& c) {
-  std::vector<int> grids;
-  for (std::int64_t n : c.integers("study.grids", 4, 2048)) grids.push_back(static_cast<int>(n));
-  return grids;
-}
+using scene::read_solver_cost;
+using scene::read_taylor_green;
 
 void write_chart(const io::OutputDir& out, const std::string& name, render::ChartSpec chart) {
   const auto tmp = out.temporary_for(name);
@@ -30,19 +20,6 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 }
 
 // ---- taylor-green ---------------------------------------------------------------------------
-
-fluid::TaylorGreenSettings read_taylor_green(const io::Config& c) {
-  fluid::TaylorGreenSettings s;
-  s.flow = read_flow(c);
-  s.end_time_s = c.number("flow.end_time", io::Range::positive());
-  s.solvers = c.choices("study.solvers", kFluidSolvers);
-  s.grids = read_grids(c);
-  s.safety_factor = c.number("study.safety_factor", io::Range{0.0, 1.0, true, false});
-  s.semi_lagrangian_courant = c.number("study.semi_lagrangian_courant", io::Range::positive());
-  s.pressure_solver = c.choice("study.pressure_solver", kPressureSolvers);
-  s.pressure_tolerance = c.number("study.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
-  return s;
-}
 
 void write_taylor_green(const io::OutputDir& out, const fluid::TaylorGreenResult& r,
                         const fluid::TaylorGreenSettings& s) {
@@ -93,20 +70,6 @@ std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context&
 }
 
 // ---- solver-cost ----------------------------------------------------------------------------
-
-fluid::SolverCostSettings read_solver_cost(const io::Config& c) {
-  fluid::SolverCostSettings s;
-  s.flow = read_flow(c);
-  s.grids = read_grids(c);
-  s.solvers = c.choices("study.solvers", kFluidSolvers);
-  s.pressure_solvers = c.choices("study.pressure_solvers", kPressureSolvers);
-  s.steps = static_cast<int>(c.integer("study.steps", 1, 100000));
-  s.pressure_tolerance = c.number("study.pressure_tolerance", io::Range{0.0, 1e-2, true, false});
-  s.safety_factor = c.number("study.safety_factor", io::Range{0.0, 1.0, true, false});
-  s.semi_lagrangian_courant = c.number("study.semi_lagrangian_courant", io::Range::positive());
-  s.sor_optimal_omega = c.boolean("study.sor_optimal_omega");
-  return s;
-}
 
 void write_solver_cost(const io::OutputDir& out, const std::vector<fluid::SolverCostRow>& rows) {
   io::CsvWriter csv({"solver", "pressure_solver", "cells", "dt", "steps", "seconds_per_step",

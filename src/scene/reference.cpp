@@ -33,6 +33,10 @@ std::string parameters_reference() {
   page +=
       "\n## Oval membrane (`jellysim experiment oval-membrane`; experiments/oval-membrane.toml)\n";
   page += oval_membrane_scene().reference_markdown();
+  page += "\n## Taylor-Green vortex study (`jellysim experiment taylor-green`; experiments/taylor-green.toml)\n";
+  page += taylor_green_scene().reference_markdown();
+  page += "\n## Fluid solver cost (`jellysim experiment solver-cost`; experiments/solver-cost.toml)\n";
+  page += solver_cost_scene().reference_markdown();
   page +=
       "\n## Elastic-bar and particle-fluid scenes (`swinging-bar`, `bar-hits-wall`, `bar-hits-particle`, "
       "`sph-stream`, `mosquito-larva`, `integrator-cost`)\n\n"

@@ -73,7 +73,110 @@ ParameterTable make_membrane() {
       std::move(p));
 }
 
+const std::vector<std::string> kPressureSolvers{"sor", "multigrid", "direct", "fft"};
+
+/// [flow] length, speed, viscosity and the grids of a Taylor-Green study.
+std::vector<Parameter> taylor_green_flow(const std::string& viscosity) {
+  return {number("flow.length", "6.283185307179586", "m", Range::positive(), "L: the periodic box is L × L"),
+          number("flow.speed", "1.0", "m/s", Range::positive(), "U: velocity amplitude"),
+          number("flow.viscosity", viscosity, "m²/s", Range::positive(), "ν")};
+}
+
+ParameterTable make_taylor_green() {
+  std::vector<Parameter> p{{"scene", Type::text, "\"taylor-green\"", "", {}, {}, 0, "the scene kind"}};
+  for (Parameter& f : taylor_green_flow("0.1")) p.push_back(std::move(f));
+  const std::vector<Parameter> rest{
+      number("flow.end_time", "1.0", "s", Range::positive(), "errors are measured here"),
+      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, kSolvers, 0, "fluid solvers compared"},
+      {"study.grids", Type::integers, "[16, 32, 64, 128]", "", Range::closed(4, 2048), {}, 0, "cells per side"},
+      number("study.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "Eulerian Δt = factor × limit of eqs. 4.8-4.9"),
+      number("study.semi_lagrangian_courant", "0.5", "", Range::positive(), "semi-Lagrangian Δt = courant × Δx / U"),
+      choice("study.pressure_solver", "multigrid", kPressureSolvers, "pressure solver"),
+      number("study.pressure_tolerance", "1e-10", "", Range{0.0, 1e-2, true, false}, "relative max-norm residual"),
+  };
+  p.insert(p.end(), rest.begin(), rest.end());
+  return ParameterTable(
+      "taylor-green",
+      "# Periodic Taylor–Green vortex against its exact solution (thesis ch. 4): error norms and measured\n"
+      "# order of convergence in space for both fluid solvers over several grids.\n"
+      "# Generated from the parameter table (src/scene/study_scenes.cpp): jellysim scenes taylor-green\n",
+      std::move(p));
+}
+
+ParameterTable make_solver_cost() {
+  std::vector<Parameter> p{{"scene", Type::text, "\"solver-cost\"", "", {}, {}, 0, "the scene kind"}};
+  for (Parameter& f : taylor_green_flow("0.01")) p.push_back(std::move(f));
+  const std::vector<Parameter> rest{
+      {"study.grids", Type::integers, "[32, 64, 128, 256, 512]", "", Range::closed(4, 2048), {}, 0,
+       "cells per side (SOR at 512² takes about 15 s per cold solve)"},
+      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, kSolvers, 0, "fluid solvers compared"},
+      {"study.pressure_solvers", Type::choices, "[\"sor\", \"multigrid\", \"fft\"]", "", {}, kPressureSolvers, 0,
+       "pressure solvers compared"},
+      integer("study.steps", "5", 1, 100000, "timed steps per configuration (after one warm-up step)"),
+      number("study.pressure_tolerance", "1e-6", "", Range{0.0, 1e-2, true, false}, "relative max-norm residual"),
+      number("study.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "Eulerian Δt = factor × limit"),
+      number("study.semi_lagrangian_courant", "1.0", "", Range::positive(), "semi-Lagrangian Δt = courant × Δx / U"),
+      boolean("study.sor_optimal_omega", "true", "ω = 2/(1 + sin(π/n)) instead of Griebel's 1.7"),
+  };
+  p.insert(p.end(), rest.begin(), rest.end());
+  return ParameterTable(
+      "solver-cost",
+      "# Cost and accuracy of both fluid solvers with both pressure solvers on the Taylor–Green problem,\n"
+      "# across grid sizes: time per step, time per simulated second, pressure iterations, error.\n"
+      "# Generated from the parameter table (src/scene/study_scenes.cpp): jellysim scenes solver-cost\n",
+      std::move(p));
+}
+
+fluid::TaylorGreen read_flow(const Reader& r) {
+  return {r.number("flow.length"), r.number("flow.speed"), r.number("flow.viscosity")};
+}
+
+std::vector<int> read_grids(const Reader& r) {
+  std::vector<int> grids;
+  for (std::int64_t n : r.integers("study.grids")) grids.push_back(static_cast<int>(n));
+  return grids;
+}
+
 }  // namespace
+
+const ParameterTable& taylor_green_scene() {
+  static const ParameterTable table = make_taylor_green();
+  return table;
+}
+
+const ParameterTable& solver_cost_scene() {
+  static const ParameterTable table = make_solver_cost();
+  return table;
+}
+
+fluid::TaylorGreenSettings read_taylor_green(const io::Config& c) {
+  const Reader r(c, taylor_green_scene());
+  fluid::TaylorGreenSettings s;
+  s.flow = read_flow(r);
+  s.end_time_s = r.number("flow.end_time");
+  s.solvers = r.choices("study.solvers");
+  s.grids = read_grids(r);
+  s.safety_factor = r.number("study.safety_factor");
+  s.semi_lagrangian_courant = r.number("study.semi_lagrangian_courant");
+  s.pressure_solver = r.choice("study.pressure_solver");
+  s.pressure_tolerance = r.number("study.pressure_tolerance");
+  return s;
+}
+
+fluid::SolverCostSettings read_solver_cost(const io::Config& c) {
+  const Reader r(c, solver_cost_scene());
+  fluid::SolverCostSettings s;
+  s.flow = read_flow(r);
+  s.grids = read_grids(r);
+  s.solvers = r.choices("study.solvers");
+  s.pressure_solvers = r.choices("study.pressure_solvers");
+  s.steps = static_cast<int>(r.integer("study.steps"));
+  s.pressure_tolerance = r.number("study.pressure_tolerance");
+  s.safety_factor = r.number("study.safety_factor");
+  s.semi_lagrangian_courant = r.number("study.semi_lagrangian_courant");
+  s.sor_optimal_omega = r.boolean("study.sor_optimal_omega");
+  return s;
+}
 
 const ParameterTable& driven_cavity_scene() {
   static const ParameterTable table = make_cavity();
@@ -139,6 +242,8 @@ const ParameterTable* table_for_definition(std::string_view path) {
   if (path == "scenes/jellyfish.toml") return &jellyfish_scene();
   if (path == "experiments/driven-cavity.toml") return &driven_cavity_scene();
   if (path == "experiments/oval-membrane.toml") return &oval_membrane_scene();
+  if (path == "experiments/taylor-green.toml") return &taylor_green_scene();
+  if (path == "experiments/solver-cost.toml") return &solver_cost_scene();
   return nullptr;
 }
 

@@ -35,7 +35,8 @@ std::string read_source_file(const std::string& relative) {
 const std::vector<const ParameterTable*>& tables() {
   static const std::vector<const ParameterTable*> all{&scene::jellyfish_scene(), &scene::render_parameters(),
                                                       &scene::viewer_controls(), &scene::driven_cavity_scene(),
-                                                      &scene::oval_membrane_scene()};
+                                                      &scene::oval_membrane_scene(), &scene::taylor_green_scene(),
+                                                      &scene::solver_cost_scene()};
   return all;
 }
 
@@ -66,7 +67,9 @@ TEST(SceneParameters, ReferencePageIsCurrent) {
 TEST(SceneParameters, DefinitionFilesAreTheirTables) {
   for (const auto& [path, name] : {std::pair{"scenes/jellyfish.toml", "jellyfish"},
                                    {"experiments/driven-cavity.toml", "driven-cavity"},
-                                   {"experiments/oval-membrane.toml", "oval-membrane"}}) {
+                                   {"experiments/oval-membrane.toml", "oval-membrane"},
+                                   {"experiments/taylor-green.toml", "taylor-green"},
+                                   {"experiments/solver-cost.toml", "solver-cost"}}) {
     const ParameterTable* table = scene::table_for_definition(path);
     ASSERT_NE(table, nullptr) << path;
     EXPECT_EQ(read_source_file(path), table->scene_toml())
