@@ -20,7 +20,6 @@ using scene::read_bar;
 using scene::read_collision;
 using scene::read_fluid_parameters;
 using scene::read_larva;
-inline sph::RunSettings read_run_settings(const io::Config& c) { return scene::read_particle_run_settings(c); }
 
 /// One recorded frame.
 struct Frame {

@@ -47,7 +47,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_wall(const Context
   for (Vec2 p : scene->body.points.position) lowest_face = std::min(lowest_face, p.y);
   const double floor = lowest_face - gap;
   scene->walls = {sph::Wall{{0.0, floor}, {0.0, 1.0}, false}};
-  const sph::RunSettings rs = read_run_settings(ctx.config);
+  const sph::RunSettings rs = scene::read_particle_run_settings(ctx.config);
   const Output o = read_output(ctx.config);
   return [scene, rs, o, floor, ctx](const io::OutputDir& out) {
     const auto start = Clock::now();
@@ -89,7 +89,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_particle(const Con
   scene->velocity = {v0};
   scene->mass = {mass};
   scene->particle_gravity = ctx.config.vec2("particle.gravity");
-  const sph::RunSettings rs = read_run_settings(ctx.config);
+  const sph::RunSettings rs = scene::read_particle_run_settings(ctx.config);
   const Output o = read_output(ctx.config);
   return [scene, rs, o, v0, ctx](const io::OutputDir& out) {
     const auto start = Clock::now();

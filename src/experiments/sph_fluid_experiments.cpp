@@ -45,7 +45,7 @@ StreamSetup read_stream(const io::Config& c) {
   s.hi = c.vec2("box.max");
   if (!(s.hi.x > s.lo.x && s.hi.y > s.lo.y)) throw InputError("field 'box.max' must exceed 'box.min' in both coordinates");
   s.scene.walls = sph::box_walls(s.lo, s.hi);
-  s.run = read_run_settings(c);
+  s.run = scene::read_particle_run_settings(c);
   s.run.emitter.interval_s = c.number("emitter.interval", io::Range::positive());
   s.run.emitter.position = Vec2{s.lo.x, s.hi.y} + c.vec2("emitter.offset");  // from the top-left corner
   s.run.emitter.velocity = c.vec2("emitter.velocity");
@@ -96,7 +96,7 @@ struct LarvaSetup {
 LarvaSetup read_larva_setup(const io::Config& c) {
   LarvaSetup s;
   s.larva = build_larva_scene(c, c.number("fluid.gas_constant", io::Range::non_negative()));
-  s.run = read_run_settings(c);
+  s.run = scene::read_particle_run_settings(c);
   s.lo = c.vec2("box.min");
   s.hi = c.vec2("box.max");
   s.strip_frames = static_cast<int>(c.integer("output.strip_frames", 1, 64));
@@ -153,7 +153,7 @@ struct CostSetup {
 };
 
 CostSetup read_cost(const io::Config& c) {
-  CostSetup s{c, read_run_settings(c), c.numbers("study.gas_constants", io::Range::positive()), {}, {}};
+  CostSetup s{c, scene::read_particle_run_settings(c), c.numbers("study.gas_constants", io::Range::positive()), {}, {}};
   s.integrators = c.choices("study.integrators", ode::integrator_names());
   s.controls = c.choices("study.error_controls", {"embedded", "step-doubling"});
   s.run.time.adaptive = true;

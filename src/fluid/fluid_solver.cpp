@@ -45,6 +45,11 @@ PressureSolveReport FluidSolver::project(double dt_s) {
   return projector_.project(state_, settings_.boundaries, dt_s, settings_.density_kg_per_m3);
 }
 
+const std::vector<std::string>& fluid_solver_names() {
+  static const std::vector<std::string> names{"eulerian", "semi-lagrangian"};
+  return names;
+}
+
 std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacGrid& grid,
                                                const FluidSettings& settings) {
   if (name == "eulerian") return std::make_unique<EulerianSolver>(grid, settings);

@@ -193,6 +193,11 @@ double max_abs(std::span<const double> values) {
   return std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
 }
 
+const std::vector<std::string>& pressure_solver_names() {
+  static const std::vector<std::string> names{"sor", "multigrid", "direct", "fft"};
+  return names;
+}
+
 std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
                                                      const PressureSolverSettings& settings) {
   if (name == "sor") return std::make_unique<SorSolver>(settings);

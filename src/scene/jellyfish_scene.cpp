@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/poisson.hpp"
 
 namespace jellysim::scene {
 
@@ -51,9 +53,9 @@ ParameterTable make_jellyfish_scene() {
       number("tank.height", "0.32", "m", kPositive, "tank height"),
       {"tank.cells", Type::integers, "[96, 128]", "", Range::closed(4, 4096), {}, 2,
        "fluid cells along x and y [nx, ny]: 2.5 mm, 16 across the bell"},
-      choice("tank.solver", "eulerian", {"semi-lagrangian", "eulerian"},
+      choice("tank.solver", "eulerian", fluid::fluid_solver_names(),
              "eulerian (§4.1) or semi-lagrangian (Stam, §4.2: more diffusive, docs/jellyfish.md)"),
-      choice("tank.pressure_solver", "fft", {"multigrid", "sor", "direct", "fft"},
+      choice("tank.pressure_solver", "fft", fluid::pressure_solver_names(),
              "fft is exact and fastest on uniform grids; direct: sparse Cholesky"),
       number("tank.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
              "relative max-norm residual of each pressure solve"),

@@ -182,9 +182,7 @@ io::Config ParameterTable::defaults() const { return io::Config::parse(scene_tom
 
 const Parameter& Reader::expect(std::string_view key, Type type) const {
   const Parameter& p = table_.at(key);
-  const bool compatible = p.type == type || (type == Type::choice && p.type == Type::text) ||
-                          (type == Type::text && p.type == Type::choice);
-  if (!compatible) throw std::logic_error("parameter '" + std::string(key) + "' read with the wrong type");
+  if (p.type != type) throw std::logic_error("parameter '" + std::string(key) + "' read with the wrong type");
   return p;
 }
 

@@ -1,6 +1,8 @@
 #include "jellysim/scene/study_scenes.hpp"
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/fluid/fluid_solver.hpp"
+#include "jellysim/fluid/poisson.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 namespace jellysim::scene {
@@ -9,15 +11,14 @@ namespace {
 using io::Range;
 using namespace param;
 
-const std::vector<std::string> kSolvers{"eulerian", "semi-lagrangian"};
 
 ParameterTable make_cavity() {
   std::vector<Parameter> p{
       {"scene", Type::text, "\"driven-cavity\"", "", {}, {}, 0, "the scene kind"},
-      choice("solver", "eulerian", kSolvers, "fluid solver (`--solver`)"),
+      choice("solver", "eulerian", fluid::fluid_solver_names(), "fluid solver (`--solver`)"),
       number("re", "100.0", "", Range{0.0, 1e5, true, false}, "Reynolds number U L / ν (`--re`)"),
       integer("grid", "64", 4, 1024, "cells per side (`--grid`)"),
-      choice("cavity.pressure_solver", "multigrid", {"sor", "multigrid", "direct", "fft"}, "pressure solver"),
+      choice("cavity.pressure_solver", "multigrid", fluid::pressure_solver_names(), "pressure solver"),
       number("cavity.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
              "relative max-norm residual of the pressure solve"),
       number("cavity.time_step", "0.0", "s", Range::non_negative(),
@@ -48,7 +49,7 @@ ParameterTable make_cavity() {
 ParameterTable make_membrane() {
   std::vector<Parameter> p{
       number("duration", "2.0", "s", Range::positive(), "simulated time"),
-      choice("solver", "eulerian", kSolvers, "fluid solver (`--solver`)"),
+      choice("solver", "eulerian", fluid::fluid_solver_names(), "fluid solver (`--solver`)"),
       integer("membrane.cells", "30", 4, 1024, "grid cells per side (Fig. 8.9: 30 x 30)"),
       number("membrane.box", "1.0", "m", Range::positive(), "side of the square fluid box"),
       number("membrane.viscosity", "0.0", "m²/s", Range::non_negative(), "ν (Fig. 8.9: inviscid)"),
@@ -73,8 +74,6 @@ ParameterTable make_membrane() {
       std::move(p));
 }
 
-const std::vector<std::string> kPressureSolvers{"sor", "multigrid", "direct", "fft"};
-
 /// [flow] length, speed, viscosity and the grids of a Taylor-Green study.
 std::vector<Parameter> taylor_green_flow(const std::string& viscosity) {
   return {number("flow.length", "6.283185307179586", "m", Range::positive(), "L: the periodic box is L × L"),
@@ -87,11 +86,11 @@ ParameterTable make_taylor_green() {
   for (Parameter& f : taylor_green_flow("0.1")) p.push_back(std::move(f));
   const std::vector<Parameter> rest{
       number("flow.end_time", "1.0", "s", Range::positive(), "errors are measured here"),
-      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, kSolvers, 0, "fluid solvers compared"},
+      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, fluid::fluid_solver_names(), 0, "fluid solvers compared"},
       {"study.grids", Type::integers, "[16, 32, 64, 128]", "", Range::closed(4, 2048), {}, 0, "cells per side"},
       number("study.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "Eulerian Δt = factor × limit of eqs. 4.8-4.9"),
       number("study.semi_lagrangian_courant", "0.5", "", Range::positive(), "semi-Lagrangian Δt = courant × Δx / U"),
-      choice("study.pressure_solver", "multigrid", kPressureSolvers, "pressure solver"),
+      choice("study.pressure_solver", "multigrid", fluid::pressure_solver_names(), "pressure solver"),
       number("study.pressure_tolerance", "1e-10", "", Range{0.0, 1e-2, true, false}, "relative max-norm residual"),
   };
   p.insert(p.end(), rest.begin(), rest.end());
@@ -109,8 +108,8 @@ ParameterTable make_solver_cost() {
   const std::vector<Parameter> rest{
       {"study.grids", Type::integers, "[32, 64, 128, 256, 512]", "", Range::closed(4, 2048), {}, 0,
        "cells per side (SOR at 512² takes about 15 s per cold solve)"},
-      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, kSolvers, 0, "fluid solvers compared"},
-      {"study.pressure_solvers", Type::choices, "[\"sor\", \"multigrid\", \"fft\"]", "", {}, kPressureSolvers, 0,
+      {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, fluid::fluid_solver_names(), 0, "fluid solvers compared"},
+      {"study.pressure_solvers", Type::choices, "[\"sor\", \"multigrid\", \"fft\"]", "", {}, fluid::pressure_solver_names(), 0,
        "pressure solvers compared"},
       integer("study.steps", "5", 1, 100000, "timed steps per configuration (after one warm-up step)"),
       number("study.pressure_tolerance", "1e-6", "", Range{0.0, 1e-2, true, false}, "relative max-norm residual"),

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 #include <string_view>
 
 #include "jellysim/fluid/boundary.hpp"
@@ -94,6 +95,8 @@ class FluidSolver {
   double time_s_ = 0.0;
 };
 
+/// The names make_fluid_solver accepts: "eulerian", "semi-lagrangian".
+const std::vector<std::string>& fluid_solver_names();
 /// "eulerian" or "semi-lagrangian"; throws std::invalid_argument for other names.
 std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacGrid& grid,
                                                const FluidSettings& settings);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <span>
 #include <string_view>
+#include <string>
 #include <vector>
 
 #include "jellysim/fluid/boundary.hpp"
@@ -95,6 +96,8 @@ class PressureSolver {
   virtual bool uses_initial_guess() const { return true; }
 };
 
+/// The names make_pressure_solver accepts: "sor", "multigrid", "direct", "fft".
+const std::vector<std::string>& pressure_solver_names();
 /// "sor", "multigrid", "direct" or "fft"; throws std::invalid_argument for other names.
 std::unique_ptr<PressureSolver> make_pressure_solver(std::string_view name,
                                                      const PressureSolverSettings& settings = {});

@@ -17,8 +17,9 @@ const ParameterTable& jellyfish_scene();
 jellyfish::SwimSettings read_swim_settings(const io::Config& c);
 
 /// The built-in scene, the scene file at `path` (when not empty) laid over it, then the `--set`
-/// assignments: what `simulate`, `run` and `view` start from. A file whose `scene` is not
-/// "jellyfish" is an InputError naming it.
+/// assignments: what `view` starts from (`simulate` builds the same configuration through its
+/// experiment, experiments::default_config). A file whose `scene` is not "jellyfish" is an
+/// InputError naming it.
 io::Config load_jellyfish_scene(const std::string& path, const std::vector<std::string>& sets);
 
 }  // namespace jellysim::scene
