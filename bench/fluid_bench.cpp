@@ -14,7 +14,7 @@
 #include <memory>
 #include <vector>
 
-#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/studies/taylor_green.hpp"
 #include "jellysim/fluid/fft_poisson.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
@@ -60,7 +60,7 @@ void pressure_solve(benchmark::State& state, const char* name, bool set_up_first
   PressureSolverSettings settings;
   settings.relative_tolerance = 1e-6;
   settings.max_iterations = 1000000;
-  settings.sor_omega = optimal_sor_omega(n, n);
+  settings.sor_omega = jellysim::studies::optimal_sor_omega(n, n);
   pressure_solve(state, make_pressure_solver(name, settings), set_up_first);
 }
 

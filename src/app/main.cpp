@@ -37,12 +37,14 @@ struct RunOptions {
   std::vector<std::pair<std::string, std::string>> shorthands;
 };
 
-void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out) {
+/// `set_example` is a working example of --set for this command (the test
+/// Cli.EverySetExampleInTheHelpRuns runs each one).
+void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out, const std::string& set_example) {
   o.out = default_out;
   cmd.add_option("--out", o.out, "Directory for the results (created if missing)")->capture_default_str();
   cmd.add_option("--set", o.sets,
-                 "Override a parameter: --set key=value (dotted keys, e.g. --set bar.point_mass=12 "
-                 "--set time.integrator=rk4). Repeatable. `jellysim scenes NAME` lists every key.")
+                 "Override a parameter: --set key=value (dotted keys, e.g. " + set_example +
+                     "). Repeatable. `jellysim scenes NAME` lists every key.")
       ->type_name("KEY=VALUE");
   cmd.add_option("--duration", o.duration, "Simulated seconds (same as --set duration=S)")->type_name("S");
   cmd.add_flag("--quiet", o.quiet, "No progress display");
@@ -83,8 +85,9 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
     ctx.config.set(key + "=" + value);
   }
   auto run = e.prepare(ctx);
-  const js::io::OutputDir out(o.out);
+  const js::io::OutputDir out = js::io::OutputDir::for_run(o.out, e.name);
   const js::experiments::Outcome outcome = run(out);
+  out.finish_manifest();
   if (!outcome.failure.empty()) {
     std::cerr << "jellysim: run failed: " << outcome.failure << "\n  (results so far are in " << out.path().string()
               << ")\n";
@@ -114,7 +117,9 @@ int list_definitions(const std::string& name) {
     }
     return 0;
   }
-  const auto& e = js::experiments::find_experiment(name);
+  // The commands that run a built-in definition print it under their own name too.
+  const std::string definition = name == "run" ? "animation" : name == "simulate" ? "jellyfish" : name;
+  const auto& e = js::experiments::find_experiment(definition);
   std::string text = js::experiments::definition_text(e.definition_path);
   if (e.renders) {
     // The definition's own [render] lines are folded into the full section below (one [render]
@@ -227,7 +232,7 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its "
       "outputs; for a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json");
   run->add_option("scene", scene_path, "Scene file (TOML); omitted: the built-in default scene")->check(CLI::ExistingFile);
-  add_run_options(*run, run_opts, "out");
+  add_run_options(*run, run_opts, "out", "--set jellyfish.frequency=0.9 --set render.width=320");
 
   RunOptions sim_opts;
   std::string sim_scene_path;
@@ -236,7 +241,7 @@ int main(int argc, char** argv) {
                   "slices.csv, plots, a picture and VTK fields per frame, summary.json");
   simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
-  add_run_options(*simulate, sim_opts, "out/simulate");
+  add_run_options(*simulate, sim_opts, "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false");
 
   RunOptions sweep_opts;
   std::string sweep_scene_path;
@@ -250,14 +255,14 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")
       ->delimiter(',');
-  add_run_options(*sweep, sweep_opts, "out/sweep");
+  add_run_options(*sweep, sweep_opts, "out/sweep", "--set sweep.frequencies=[0.5,0.9] --set tank.viscosity=2e-5");
 
   RunOptions exp_opts;
   std::string exp_name;
   auto* exp = app.add_subcommand("experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." +
                                                    experiment_list());
   exp->add_option("name", exp_name, "Experiment name")->required();
-  add_run_options(*exp, exp_opts, "");
+  add_run_options(*exp, exp_opts, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
   std::string solver, re, grid;
   exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
   exp->add_option("--re", re, "Reynolds number (driven-cavity)");
@@ -276,7 +281,7 @@ int main(int argc, char** argv) {
   std::string show_name;
   auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
                                               "(every parameter, its default and meaning)");
-  scenes->add_option("name", show_name, "Scene or experiment to print");
+  scenes->add_option("name", show_name, "Scene or experiment to print (`run` and `simulate`: their built-in scenes)");
   bool reference = false;
   scenes->add_flag("--reference", reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
 

@@ -1,7 +1,7 @@
 // Lid-driven cavity, thesis §8.1.3 and Figure 8.7, compared with Ghia, Ghia & Shin (1982).
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/study_scenes.hpp"
-#include "jellysim/fluid/experiments_cavity.hpp"
+#include "jellysim/studies/driven_cavity.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/field_picture.hpp"
@@ -15,13 +15,13 @@ using scene::CavityScene;
 using scene::read_cavity_scene;
 
 void write_profile_csv(const io::OutputDir& out, const std::string& name, const char* position, const char* velocity,
-                       const fluid::CentrelineProfile& p) {
+                       const studies::CentrelineProfile& p) {
   io::CsvWriter csv({position, velocity});
   for (std::size_t i = 0; i < p.position_m.size(); ++i) csv.row({p.position_m[i], p.velocity_m_per_s[i]});
   out.write_text(name, csv.text());
 }
 
-void write_ghia_csv(const io::OutputDir& out, const fluid::GhiaComparison& g) {
+void write_ghia_csv(const io::OutputDir& out, const studies::GhiaComparison& g) {
   io::CsvWriter csv({"profile", "position", "reference", "computed", "difference"});
   for (std::size_t i = 0; i < fluid::kGhiaRe100CentrelineU.size(); ++i) {
     const auto& r = fluid::kGhiaRe100CentrelineU[i];
@@ -37,7 +37,7 @@ void write_ghia_csv(const io::OutputDir& out, const fluid::GhiaComparison& g) {
 /// Writes each frame's field (.vti) and tracers (.vtp) into frames/ and remembers them for the .pvd.
 class VtkFrameWriter {
  public:
-  explicit VtkFrameWriter(const io::OutputDir& out) : out_(out), frames_(out.file("frames")) {}
+  explicit VtkFrameWriter(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
 
   void operator()(double t, const fluid::FlowState& state, const std::vector<Vec2>& tracers) {
     const std::string id = std::to_string(1000000 + entries_.size() / 2).substr(1);
@@ -58,7 +58,7 @@ class VtkFrameWriter {
   std::vector<io::PvdEntry> entries_;
 };
 
-void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r, const std::string& caption) {
+void write_pictures(const io::OutputDir& out, const studies::DrivenCavityResult& r, const std::string& caption) {
   render::FieldPicture picture;
   picture.state = &r.final_state;
   picture.caption = caption;
@@ -71,7 +71,7 @@ void write_pictures(const io::OutputDir& out, const fluid::DrivenCavityResult& r
   write_via_temporary(out, "cavity.vti", [&](const auto& p) { io::write_flow_vti(p, r.final_state); });
 }
 
-void write_figure_8_7(const io::OutputDir& out, const std::vector<fluid::CavityFigurePanel>& panels) {
+void write_figure_8_7(const io::OutputDir& out, const std::vector<studies::CavityFigurePanel>& panels) {
   std::vector<render::FieldPicture> pictures;
   for (const auto& p : panels) {
     render::FieldPicture picture;
@@ -86,7 +86,7 @@ void write_figure_8_7(const io::OutputDir& out, const std::vector<fluid::CavityF
                       [&](const auto& p) { render::write_field_panels_png(pictures, columns, options, p); });
 }
 
-nlohmann::ordered_json key_figures(const fluid::DrivenCavityResult& r) {
+nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r) {
   nlohmann::ordered_json j;
   j["simulated_seconds"] = r.simulated_time_s;
   j["wall_seconds"] = r.wall_time_s;
@@ -106,19 +106,19 @@ nlohmann::ordered_json key_figures(const fluid::DrivenCavityResult& r) {
 std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context& ctx) {
   const CavityScene scene = read_cavity_scene(ctx.config);
   return [scene, ctx](const io::OutputDir& out) {
-    fluid::DrivenCavitySettings cavity = scene.cavity;
+    studies::DrivenCavitySettings cavity = scene.cavity;
     std::shared_ptr<VtkFrameWriter> frames;
     if (cavity.frame_interval_s > 0.0) {
       frames = std::make_shared<VtkFrameWriter>(out);
       cavity.on_frame = [frames](double t, const fluid::FlowState& s, const std::vector<Vec2>& p) { (*frames)(t, s, p); };
     }
-    const fluid::DrivenCavityResult r = fluid::run_driven_cavity(cavity);
+    const studies::DrivenCavityResult r = studies::run_driven_cavity(cavity);
     if (frames) frames->write_series();
     write_profile_csv(out, "centerline_u.csv", "y", "u", r.centreline_u);
     write_profile_csv(out, "centerline_v.csv", "x", "v", r.centreline_v);
     if (r.ghia) write_ghia_csv(out, *r.ghia);
     write_pictures(out, r, scene.cavity.solver + ", Re = " + io::format_double(scene.cavity.reynolds));
-    if (scene.figure_enabled) write_figure_8_7(out, fluid::run_cavity_figure_8_7(scene.figure));
+    if (scene.figure_enabled) write_figure_8_7(out, studies::run_cavity_figure_8_7(scene.figure));
     // Not reaching a steady state is reported (summary "steady": false), not treated as a failure.
     write_summary(out, "driven-cavity", ctx.config, key_figures(r), "");
     return Outcome{};

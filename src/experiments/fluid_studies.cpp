@@ -1,7 +1,7 @@
 // Fluid solver studies (thesis ch. 4): `taylor-green` (accuracy and order of convergence against the
 // exact solution) and `solver-cost` (time per step and per simulated second, and accuracy).
 #include "jellysim/experiments/experiment.hpp"
-#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/studies/taylor_green.hpp"
 #include "jellysim/render/plot.hpp"
 #include "jellysim/scene/study_scenes.hpp"
 
@@ -21,8 +21,8 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 
 // ---- taylor-green ---------------------------------------------------------------------------
 
-void write_taylor_green(const io::OutputDir& out, const fluid::TaylorGreenResult& r,
-                        const fluid::TaylorGreenSettings& s) {
+void write_taylor_green(const io::OutputDir& out, const studies::TaylorGreenResult& r,
+                        const studies::TaylorGreenSettings& s) {
   io::CsvWriter runs({"solver", "cells", "dx", "dt", "steps", "error_l2", "error_max"});
   io::CsvWriter orders({"solver", "coarse_cells", "fine_cells", "order_l2", "order_max"});
   render::ChartSpec chart;
@@ -54,9 +54,9 @@ void write_taylor_green(const io::OutputDir& out, const fluid::TaylorGreenResult
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context& ctx) {
-  const fluid::TaylorGreenSettings settings = read_taylor_green(ctx.config);
+  const studies::TaylorGreenSettings settings = read_taylor_green(ctx.config);
   return [settings, ctx](const io::OutputDir& out) {
-    const fluid::TaylorGreenResult r = fluid::run_taylor_green(settings);
+    const studies::TaylorGreenResult r = studies::run_taylor_green(settings);
     write_taylor_green(out, r, settings);
     nlohmann::ordered_json figures, fitted;
     double wall = 0.0;
@@ -71,7 +71,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context&
 
 // ---- solver-cost ----------------------------------------------------------------------------
 
-void write_solver_cost(const io::OutputDir& out, const std::vector<fluid::SolverCostRow>& rows) {
+void write_solver_cost(const io::OutputDir& out, const std::vector<studies::SolverCostRow>& rows) {
   io::CsvWriter csv({"solver", "pressure_solver", "cells", "dt", "steps", "seconds_per_step",
                      "seconds_per_simulated_second", "mean_pressure_iterations", "error_l2"});
   render::ChartSpec chart;
@@ -97,9 +97,9 @@ void write_solver_cost(const io::OutputDir& out, const std::vector<fluid::Solver
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_solver_cost(const Context& ctx) {
-  const fluid::SolverCostSettings settings = read_solver_cost(ctx.config);
+  const studies::SolverCostSettings settings = read_solver_cost(ctx.config);
   return [settings, ctx](const io::OutputDir& out) {
-    const std::vector<fluid::SolverCostRow> rows = fluid::run_solver_cost(settings);
+    const std::vector<studies::SolverCostRow> rows = studies::run_solver_cost(settings);
     write_solver_cost(out, rows);
     nlohmann::ordered_json figures, per_step = nlohmann::ordered_json::object();
     for (const auto& r : rows) {

@@ -4,6 +4,7 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/render/plot.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 
 #include <cmath>
 
@@ -50,18 +51,17 @@ struct StudySettings {
   int refinements = 4;
 };
 
+/// The scene's fields (checked against its table, scene/experiment_scenes.hpp) as the study's settings.
 StudySettings read_settings(const io::Config& c) {
+  const scene::IntegratorOrderScene scene = scene::read_integrator_order(c);
   StudySettings s;
-  s.problem.point_mass = c.number("problem.point_mass", io::Range::positive());
-  s.problem.stiffness = c.number("problem.stiffness", io::Range::positive());
-  s.problem.rest_length = c.number("problem.rest_length", io::Range::positive());
-  s.problem.amplitude = c.number("problem.amplitude", io::Range::non_negative());
-  s.problem.end_time = c.number("problem.end_time", io::Range::positive());
-  s.refinements = static_cast<int>(c.integer("study.refinements", 1, 12));
-  for (const std::string& name : ode::integrator_names()) {
-    const std::string key = "study.coarsest_steps." + name;
-    if (c.has(key)) s.coarsest_steps.emplace_back(name, static_cast<int>(c.integer(key, 1, 10000000)));
-  }
+  s.problem.point_mass = scene.point_mass;
+  s.problem.stiffness = scene.stiffness;
+  s.problem.rest_length = scene.rest_length;
+  s.problem.amplitude = scene.amplitude;
+  s.problem.end_time = scene.end_time;
+  s.refinements = scene.refinements;
+  s.coarsest_steps = scene.coarsest_steps;
   return s;
 }
 

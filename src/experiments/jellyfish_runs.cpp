@@ -20,7 +20,7 @@ std::string frame_id(std::size_t k) { return std::to_string(1000000 + k).substr(
 /// Writes the per-frame files and keeps the .pvd entries.
 class FrameFiles {
  public:
-  FrameFiles(const io::OutputDir& out, const SwimOutputOptions& o) : out_(out), frames_(out.file("frames")), options_(o) {}
+  FrameFiles(const io::OutputDir& out, const SwimOutputOptions& o) : out_(out), frames_(out.subdirectory("frames")), options_(o) {}
 
   void write(const jellyfish::SwimSimulation& sim, std::size_t index) {
     const std::string id = frame_id(index);
@@ -72,9 +72,10 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
   p.state = &sim.flow();
   p.tracers_m = sim.tracers().positions();
   for (std::size_t j = 0; j < sim.jellyfish_count(); ++j) {
-    const elastic::Body& b = sim.jellyfish(j).body();
-    const auto& muscles = sim.jellyfish(j).layout().muscle_springs;
-    for (std::size_t s = 0; s < b.linear.size(); ++s) {
+    const jellyfish::Jellyfish& jelly = sim.jellyfish(j);
+    const elastic::Body& b = jelly.body();
+    const auto& muscles = jelly.layout().muscle_springs;
+    for (std::size_t s = jelly.first_linear_spring(); s < jelly.first_linear_spring() + jelly.linear_spring_count(); ++s) {
       const std::array<Vec2, 2> seg{b.points.position[static_cast<std::size_t>(b.linear.i[s])],
                                     b.points.position[static_cast<std::size_t>(b.linear.j[s])]};
       const bool muscle = std::find(muscles.begin(), muscles.end(), static_cast<int>(s)) != muscles.end();
@@ -157,7 +158,7 @@ void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec) {
 }
 
 void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames) {
-  io::CsvWriter csv({"frame", "t", "part", "index", "x", "y"});
+  io::CsvWriter csv({"part", "frame", "t", "index", "x", "y"});  // text cells come first in each row
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const auto& fr = frames[f];
     for (std::size_t i = 0; i < fr.umbrella.size(); ++i)

@@ -9,11 +9,12 @@
 #include <mutex>
 #include <thread>
 
-#include "jellysim/coupling/oval_membrane.hpp"
+#include "jellysim/studies/oval_membrane.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/parallel.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/study_scenes.hpp"
 #include "jellysim/jellyfish/fluidless.hpp"
 #include "jellysim/render/plot.hpp"
@@ -31,10 +32,10 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 
 std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context& ctx) {
   const scene::MembraneScene membrane = scene::read_membrane_scene(ctx.config);
-  const coupling::OvalMembraneSettings base = membrane.membrane;
+  const studies::OvalMembraneSettings base = membrane.membrane;
   const std::vector<std::int64_t> refinement = membrane.refinement_cells;
   return [base, refinement, ctx](const io::OutputDir& out) {
-    const coupling::MembraneRun run = coupling::run_oval_membrane(base);
+    const studies::MembraneRun run = studies::run_oval_membrane(base);
     io::CsvWriter area({"t", "area", "area_ratio", "aspect_ratio"});
     const double a0 = run.frames.front().area;
     for (const auto& f : run.frames) area.row({f.t, f.area, f.area / a0, f.aspect_ratio});
@@ -69,10 +70,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
     io::CsvWriter refine({"cells", "dt", "area_lost_percent", "final_aspect_ratio", "wall_seconds"});
     nlohmann::ordered_json study = nlohmann::ordered_json::array();
     for (const auto cells : refinement) {
-      coupling::OvalMembraneSettings s = base;
+      studies::OvalMembraneSettings s = base;
       s.cells = static_cast<int>(cells);
       s.dt_s = base.dt_s * base.cells / static_cast<double>(cells);  // same Courant number
-      const coupling::MembraneRun r = coupling::run_oval_membrane(s);
+      const studies::MembraneRun r = studies::run_oval_membrane(s);
       const double lost = 100.0 * (1.0 - r.frames.back().area / r.frames.front().area);
       refine.row({static_cast<double>(cells), s.dt_s, lost, r.frames.back().aspect_ratio, r.wall_seconds});
       study.push_back({{"cells", cells}, {"area_lost_percent", lost}, {"failure", r.failure}});
@@ -126,9 +127,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_swim_study(const Context& c
 /// finding (or not finding) the instability is the result.
 std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& ctx, const std::string& name) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
-  const int panels = static_cast<int>(ctx.config.integer("figure.panels", 1, 24));
-  const double zoom = ctx.config.number("output.picture_zoom", io::Range::non_negative());
-  const std::string expected = ctx.config.choice("figure.expected", {"structural", "numerical"});
+  const scene::InstabilityFigure figure = scene::read_instability_figure(ctx.config);
+  const int panels = figure.panels;
+  const double zoom = figure.zoom_diameters;
+  const std::string expected = figure.expected;
   return [settings, panels, zoom, expected, ctx, name](const io::OutputDir& out) {
     jellyfish::SwimSimulation sim(settings);
     struct Snapshot {
@@ -200,7 +202,7 @@ struct SweepRun {
 };
 
 /// The fluid cell's extent along a unit direction (exact for directions along the axes).
-double cell_extent_along(const jellyfish::TankSpec& tank, Vec2 direction) {
+double cell_extent_along(const coupling::TankSpec& tank, Vec2 direction) {
   return std::abs(direction.x) * tank.width_m / tank.cells_x + std::abs(direction.y) * tank.height_m / tank.cells_y;
 }
 
@@ -262,9 +264,10 @@ SweepPoint summarise_frequency(const std::vector<SweepRun>& runs, std::size_t fr
 
 std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
-  const std::vector<double> frequencies = ctx.config.numbers("sweep.frequencies", scene::jellyfish_scene().at("jellyfish.frequency").range);
-  const int placements = static_cast<int>(ctx.config.integer("sweep.placements", 1, 64));
-  const int threads_wanted = static_cast<int>(ctx.config.integer("sweep.threads", 0, 64));
+  const scene::SweepScene sweep = scene::read_sweep(ctx.config);
+  const std::vector<double> frequencies = sweep.frequencies;
+  const int placements = sweep.placements;
+  const int threads_wanted = sweep.threads;
   return [base, frequencies, placements, threads_wanted, ctx](const io::OutputDir& out) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<SweepRun> runs = plan_sweep(base, frequencies, placements);
@@ -351,19 +354,13 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
 
 std::function<Outcome(const io::OutputDir&)> prepare_fluidless(const Context& ctx) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
-  jellyfish::FluidlessSettings fl;
-  fl.drag_kg_per_s = ctx.config.number("fluidless.drag", io::Range::non_negative());
-  fl.pressure_factor = ctx.config.number("fluidless.pressure_factor", io::Range::non_negative());
-  const double point_mass = ctx.config.number("fluidless.point_mass", io::Range::positive());
-  sim::TimeSettings time;
-  time.integrator = ctx.config.choice("fluidless.integrator", ode::integrator_names());
-  time.dt = ctx.config.number("fluidless.dt", io::Range::positive());
-  time.adaptive = ctx.config.boolean("fluidless.adaptive");
-  time.tolerances.atol = ctx.config.number("fluidless.atol", io::Range::positive());
-  time.tolerances.rtol = ctx.config.number("fluidless.rtol", io::Range::non_negative());
+  const scene::FluidlessScene fluidless = scene::read_fluidless(ctx.config);
+  const jellyfish::FluidlessSettings fl = fluidless.model;
+  const double point_mass = fluidless.point_mass;
+  sim::TimeSettings time = fluidless.time;
   time.duration = settings.duration_s;
   time.frame_interval = settings.frame_interval_s;
-  const bool compare = ctx.config.boolean("fluidless.compare_with_fluid");
+  const bool compare = fluidless.compare_with_fluid;
   return [settings, fl, point_mass, time, compare, ctx](const io::OutputDir& out) {
     jellyfish::JellyfishSpec spec = settings.jellyfish();
     spec.point_mass_kg = point_mass;
@@ -410,7 +407,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_fluidless(const Context& ct
 
 std::function<Outcome(const io::OutputDir&)> prepare_coupling_stability(const Context& ctx) {
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
-  const std::vector<double> steps = ctx.config.numbers("study.time_steps", io::Range::positive());
+  const std::vector<double> steps = scene::read_coupling_stability_steps(ctx.config);
   return [base, steps, ctx](const io::OutputDir& out) {
     io::CsvWriter csv({"dt", "explicit_stable", "explicit_wall_per_simulated_second", "semi_implicit_stable",
                        "semi_implicit_wall_per_simulated_second", "semi_implicit_krylov_per_step"});

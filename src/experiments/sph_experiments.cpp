@@ -30,25 +30,17 @@ sph::Scene bar_scene(const io::Config& c) {
   return s;
 }
 
-struct Output {
-  int strip_frames = 12;
-  double window_s = 3.0;  ///< strip spans this long around the first collision
-};
-Output read_output(const io::Config& c) {
-  return {static_cast<int>(c.integer("output.strip_frames", 1, 64)), c.number("output.strip_window", io::Range::positive())};
-}
-
 // ---- bar-hits-wall (Figure 8.2) ----------------------------------------------------------------
 
 std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_wall(const Context& ctx) {
   auto scene = std::make_shared<sph::Scene>(bar_scene(ctx.config));
-  const double gap = ctx.config.number("wall.gap", io::Range::positive());
+  const double gap = scene::read_wall_gap(ctx.config);
   double lowest_face = 0.0;
   for (Vec2 p : scene->body.points.position) lowest_face = std::min(lowest_face, p.y);
   const double floor = lowest_face - gap;
   scene->walls = {sph::Wall{{0.0, floor}, {0.0, 1.0}, false}};
   const sph::RunSettings rs = scene::read_particle_run_settings(ctx.config);
-  const Output o = read_output(ctx.config);
+  const scene::StripOutput o = scene::read_strip_output(ctx.config);  // strip_window around the first contact
   return [scene, rs, o, floor, ctx](const io::OutputDir& out) {
     const auto start = Clock::now();
     const double cpu0 = cpu_seconds();
@@ -68,7 +60,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_wall(const Context
     DrawOptions d;
     d.decor = {{Vec2{-0.55, floor}, Vec2{0.55, floor}}};
     write_strip(out, "bar_hits_wall.png", "bar hits a static wall", *scene, frames, centre - 0.5 * o.window_s,
-                centre + 0.5 * o.window_s, o.strip_frames, d);
+                centre + 0.5 * o.window_s, o.frames, d);
     nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["floor_y"] = floor;
     f["lowest_point_y"] = lowest;
@@ -82,15 +74,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_wall(const Context
 
 std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_particle(const Context& ctx) {
   auto scene = std::make_shared<sph::Scene>(bar_scene(ctx.config));
-  const Vec2 pivot = ctx.config.vec2("bar.pivot");
-  const Vec2 x0 = pivot + ctx.config.vec2("particle.position"), v0 = ctx.config.vec2("particle.velocity");
-  const double mass = ctx.config.number("particle.mass", io::Range::positive());
-  scene->position = {x0};
+  const scene::PointParticle particle = scene::read_point_particle(ctx.config);
+  const Vec2 v0 = particle.velocity;
+  scene->position = {particle.position};
   scene->velocity = {v0};
-  scene->mass = {mass};
-  scene->particle_gravity = ctx.config.vec2("particle.gravity");
+  scene->mass = {particle.mass_kg};
+  scene->particle_gravity = particle.gravity;
   const sph::RunSettings rs = scene::read_particle_run_settings(ctx.config);
-  const Output o = read_output(ctx.config);
+  const scene::StripOutput o = scene::read_strip_output(ctx.config);  // strip_window around the first contact
   return [scene, rs, o, v0, ctx](const io::OutputDir& out) {
     const auto start = Clock::now();
     const double cpu0 = cpu_seconds();
@@ -113,7 +104,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_particle(const Con
     write_frames_csv(out, frames);
     const double centre = contact >= 0.0 ? contact : rs.time.duration / 2.0;
     write_strip(out, "bar_hits_particle.png", "bar hits a point mass", *scene, frames, centre - 0.5 * o.window_s,
-                centre + 0.5 * o.window_s, o.strip_frames, {});
+                centre + 0.5 * o.window_s, o.frames, {});
     nlohmann::ordered_json f = run_figures(r, wall, cpu);
     f["first_collision_time"] = contact;
     f["particle_velocity_before"] = {before.x, before.y};

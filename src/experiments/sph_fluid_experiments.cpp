@@ -41,21 +41,13 @@ StreamSetup read_stream(const io::Config& c) {
   read_collision(c, s.scene);
   s.scene.sph = read_fluid_parameters(c);
   s.scene.particle_gravity = scene::Reader(c, scene::particle_scene_rules()).vec2("fluid.gravity");
-  s.lo = c.vec2("box.min");
-  s.hi = c.vec2("box.max");
-  if (!(s.hi.x > s.lo.x && s.hi.y > s.lo.y)) throw InputError("field 'box.max' must exceed 'box.min' in both coordinates");
+  const scene::Box box = scene::read_box(c);
+  s.lo = box.min;
+  s.hi = box.max;
   s.scene.walls = sph::box_walls(s.lo, s.hi);
   s.run = scene::read_particle_run_settings(c);
-  s.run.emitter.interval_s = c.number("emitter.interval", io::Range::positive());
-  s.run.emitter.position = Vec2{s.lo.x, s.hi.y} + c.vec2("emitter.offset");  // from the top-left corner
-  s.run.emitter.velocity = c.vec2("emitter.velocity");
-  s.run.emitter.mass_kg = c.number("emitter.mass", io::Range::positive());
-  s.run.emitter.max_count = static_cast<std::size_t>(c.integer("emitter.max_count", 0, 100000));
-  const Vec2 e = s.run.emitter.position;
-  if (!(e.x > s.lo.x && e.x < s.hi.x && e.y > s.lo.y && e.y < s.hi.y)) {
-    throw InputError("field 'emitter.offset' puts the emitter outside the box");
-  }
-  s.strip_frames = static_cast<int>(c.integer("output.strip_frames", 1, 64));
+  s.run.emitter = scene::read_emitter(c, box);
+  s.strip_frames = scene::read_strip_output(c).frames;
   return s;
 }
 
@@ -95,13 +87,15 @@ struct LarvaSetup {
 
 LarvaSetup read_larva_setup(const io::Config& c) {
   LarvaSetup s;
-  s.larva = build_larva_scene(c, c.number("fluid.gas_constant", io::Range::non_negative()));
+  s.larva = build_larva_scene(c);
   s.run = scene::read_particle_run_settings(c);
-  s.lo = c.vec2("box.min");
-  s.hi = c.vec2("box.max");
-  s.strip_frames = static_cast<int>(c.integer("output.strip_frames", 1, 64));
-  s.strip_start = c.number("output.strip_start", io::Range::non_negative());
-  s.velocity_scale = c.number("output.velocity_scale", io::Range::non_negative());
+  const scene::Box box = scene::read_box(c);
+  s.lo = box.min;
+  s.hi = box.max;
+  const scene::StripOutput strip = scene::read_strip_output(c);
+  s.strip_frames = strip.frames;
+  s.strip_start = strip.start_s;
+  s.velocity_scale = strip.velocity_scale_s;
   return s;
 }
 
@@ -153,9 +147,11 @@ struct CostSetup {
 };
 
 CostSetup read_cost(const io::Config& c) {
-  CostSetup s{c, scene::read_particle_run_settings(c), c.numbers("study.gas_constants", io::Range::positive()), {}, {}};
-  s.integrators = c.choices("study.integrators", ode::integrator_names());
-  s.controls = c.choices("study.error_controls", {"embedded", "step-doubling"});
+  CostSetup s{c, scene::read_particle_run_settings(c), {}, {}, {}};
+  scene::CostStudy study = scene::read_cost_study(c);
+  s.gas_constants = std::move(study.gas_constants);
+  s.integrators = std::move(study.integrators);
+  s.controls = std::move(study.error_controls);
   s.run.time.adaptive = true;
   for (double k : s.gas_constants) build_larva_scene(c, k);  // validates every configuration up front
   return s;

@@ -7,39 +7,13 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/geometry/synthetic_bell.hpp"
-#include "jellysim/core/errors.hpp"
 #include "jellysim/render/animation_outputs.hpp"
-#include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 
 namespace jellysim::experiments {
 namespace {
 
-struct StagesSetup {
-  geometry::SyntheticBell bell;
-  double contracted = 0.9;
-  bool simulated = true;
-  int panel_width = 360, panel_height = 300;
-  render::PipelineSettings pipeline;
-};
-
-StagesSetup read_setup(const io::Config& c) {
-  StagesSetup s;
-  s.bell.diameter_m = c.number("bell.diameter", io::Range::positive());
-  s.bell.height_m = c.number("bell.height", io::Range::positive());
-  s.bell.thickness_m = c.number("bell.thickness", io::Range::positive());
-  s.contracted = c.number("bell.contracted", io::Range::closed(0.0, 1.0));
-  s.simulated = c.choice("bell.source", {"simulation", "synthetic"}) == "simulation";
-  s.bell.umbrella_points = static_cast<int>(c.integer("bell.umbrella_points", 5, 10001));
-  if (s.bell.umbrella_points % 2 == 0)
-    throw InputError("field 'bell.umbrella_points' = " + std::to_string(s.bell.umbrella_points) + " must be odd");
-  s.bell.tentacle_points = static_cast<int>(c.integer("bell.tentacle_points", 2, 10000));
-  s.bell.tentacle_length_m = c.number("bell.tentacle_length", io::Range::positive());
-  s.panel_width = static_cast<int>(c.integer("output.panel_width", 64, 2048));
-  s.panel_height = static_cast<int>(c.integer("output.panel_height", 64, 2048));
-  s.pipeline = scene::read_render_settings(c);
-  s.bell.max_contraction = s.pipeline.geometry.noise.max_contraction;
-  return s;
-}
+using StagesSetup = scene::StagesScene;
 
 Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::OutputDir& out) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -93,7 +67,7 @@ Experiment stages_experiment() {
   e.definition_path = "experiments/stages.toml";
   e.renders = true;
   e.prepare = [](const Context& ctx) {
-    const StagesSetup setup = read_setup(ctx.config);
+    const StagesSetup setup = scene::read_stages_scene(ctx.config);
     const io::Config config = ctx.config;
     return std::function<Outcome(const io::OutputDir&)>(
         [setup, config](const io::OutputDir& out) { return run_stages(setup, config, out); });

@@ -35,7 +35,7 @@ BarScene read_bar_scene(const io::Config& c) {
   s.bar.angle_rad = r.number("bar.angle_deg") * std::numbers::pi / 180.0;
   s.bar.drag = r.number("bar.drag");
   s.time = scene::read_time_settings(c);
-  s.strip_frames = static_cast<int>(c.integer("output.strip_frames", 1, 64));
+  s.strip_frames = scene::read_strip_output(c).frames;
   s.max_speed = r.number("output.max_speed");
   return s;
 }

@@ -11,6 +11,7 @@
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/render/plot.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -67,9 +68,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   if (settings.school.size() != 1)
     throw InputError("experiment steering needs exactly one jellyfish (the [jellyfish] table, no jellyfish objects)");
-  const Vec2 offset = ctx.config.vec2("steering.target_offset");
-  if (!(offset.x > 0)) throw InputError("field 'steering.target_offset' needs x > 0 (the target to the left is at −x)");
-  const double settle_cycles = ctx.config.number("steering.settle_cycles", io::Range::non_negative());
+  const scene::SteeringScene steering = scene::read_steering(ctx.config);
+  const Vec2 offset = steering.target_offset;
+  const double settle_cycles = steering.settle_cycles;
   return [settings, offset, settle_cycles, ctx](const io::OutputDir& out) {
     const Vec2 start = settings.jellyfish().aperture_centre_m;
     const Vec2 left = start + Vec2{-offset.x, offset.y}, right = start + offset;

@@ -2,14 +2,139 @@
 
 #include "jellysim/core/errors.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
 #include <unistd.h>
 
 namespace jellysim::io {
+
+namespace fs = std::filesystem;
+
+/// The files a run wrote, kept on disk as the list grows, so a killed run still leaves it right.
+class RunManifest {
+ public:
+  RunManifest(fs::path file, std::string header) : file_(std::move(file)), header_(std::move(header)) {
+    write_whole();
+  }
+  void record(const std::string& relative) {
+    const std::lock_guard lock(mutex_);
+    if (!names_.insert(relative).second) return;
+    std::ofstream out(file_, std::ios::binary | std::ios::app);
+    out << relative << '\n';
+    if (!out) throw RunError("cannot write '" + file_.string() + "'");
+  }
+  void finish() {
+    const std::lock_guard lock(mutex_);
+    write_whole();
+  }
+
+ private:
+  void write_whole() const {
+    std::string text = header_;
+    for (const std::string& n : names_) text += n + '\n';
+    const fs::path tmp = file_.string() + ".tmp-" + std::to_string(::getpid());
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      out << text;
+      if (!out) throw RunError("cannot write '" + file_.string() + "'");
+    }
+    std::error_code ec;
+    fs::rename(tmp, file_, ec);
+    if (ec) throw RunError("cannot write '" + file_.string() + "': " + ec.message());
+  }
+
+  std::mutex mutex_;
+  fs::path file_;
+  std::string header_;
+  std::set<std::string> names_;
+};
+
+namespace {
+
+/// A temporary of OutputDir (NAME.tmp-PID) that a killed run left behind.
+bool is_leftover_temporary(const std::string& name) {
+  const std::size_t at = name.rfind(".tmp-");
+  if (at == std::string::npos || at + 5 == name.size()) return false;
+  return std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + 5), name.end(),
+                     [](char c) { return c >= '0' && c <= '9'; });
+}
+
+/// The relative paths an earlier run's manifest lists (none when there is no manifest).
+std::set<std::string> earlier_outputs(const fs::path& manifest) {
+  std::set<std::string> names;
+  std::ifstream in(manifest);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.front() != '#') names.insert(line);
+  return names;
+}
+
+/// Removes an earlier run's outputs from `dir`, or throws InputError, touching nothing, when the
+/// directory holds anything else.
+void clear_earlier_run(const fs::path& dir) {
+  const std::set<std::string> earlier = earlier_outputs(dir / kManifestName);
+  std::vector<fs::path> ours, folders;
+  std::vector<std::string> foreign;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const std::string relative = it->path().lexically_relative(dir).generic_string();
+    if (it->is_directory() && !it->is_symlink()) {
+      folders.push_back(it->path());
+    } else if (relative == kManifestName || earlier.contains(relative) ||
+               is_leftover_temporary(it->path().filename().string())) {
+      ours.push_back(it->path());
+    } else {
+      foreign.push_back(relative);
+    }
+  }
+  if (ec) throw RunError("cannot read output directory '" + dir.string() + "': " + ec.message());
+  if (!foreign.empty()) {
+    std::sort(foreign.begin(), foreign.end());
+    throw InputError("--out '" + dir.string() + "' holds " + std::to_string(foreign.size()) +
+                     " file(s) that no earlier jellysim run there wrote (e.g. '" + foreign.front() +
+                     "'); jellysim does not mix its results with other files: choose a new or empty directory");
+  }
+  for (const fs::path& p : ours) fs::remove(p, ec);
+  // Deepest folders first, so a folder emptied of its subfolders goes too.
+  std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
+    return std::distance(a.begin(), a.end()) > std::distance(b.begin(), b.end());
+  });
+  for (const fs::path& f : folders)
+    if (fs::is_empty(f, ec)) fs::remove(f, ec);
+}
+
+}  // namespace
+
+OutputDir OutputDir::for_run(std::filesystem::path dir, std::string_view command) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError("--out '" + dir.string() + "' is a file, not a directory");
+  if (fs::is_directory(dir, ec)) clear_earlier_run(dir);
+  OutputDir out(std::move(dir));
+  out.manifest_ = std::make_shared<RunManifest>(
+      out.dir_ / kManifestName, "# jellysim " + std::string(command) +
+                                    ": the files of this run; a later run into this directory removes them first\n");
+  return out;
+}
+
+OutputDir OutputDir::subdirectory(std::string_view name) const {
+  OutputDir sub(dir_ / name);
+  sub.manifest_ = manifest_;
+  sub.prefix_ = prefix_ + std::string(name) + "/";
+  return sub;
+}
+
+void OutputDir::finish_manifest() const {
+  if (manifest_) manifest_->finish();
+}
 
 OutputDir::OutputDir(std::filesystem::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
@@ -31,6 +156,7 @@ void OutputDir::commit(const std::filesystem::path& temporary, std::string_view 
     std::filesystem::remove(temporary, ec);
     throw RunError("cannot write '" + (dir_ / name).string() + "': " + ec.message());
   }
+  if (manifest_) manifest_->record(prefix_ + std::string(name));
 }
 
 void OutputDir::write_text(std::string_view name, std::string_view content) const {

@@ -112,16 +112,16 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
 
   // Umbrella: the subumbrellar string (§7.1).
   const double area_bell = s.thickness_m * s.thickness_m;  // A = ϑ² for tangential springs
-  for (Vec2 p : profile) layout_.umbrella.push_back(body_.add_point(p, s.point_mass_kg));
+  for (Vec2 p : profile) layout_.umbrella.push_back(own_body_.add_point(p, s.point_mass_kg));
   layout_.apex = m;
   const auto& u = layout_.umbrella;
   auto add_spring = [&](int a, int b, double modulus, double area) {
-    const double l = norm(body_.points.position[b] - body_.points.position[a]);
-    body_.add_linear_spring(a, b, stiffness(modulus, area, l), l);
-    return static_cast<int>(body_.linear.size()) - 1;
+    const double l = norm(own_body_.points.position[b] - own_body_.points.position[a]);
+    own_body_.add_linear_spring(a, b, stiffness(modulus, area, l), l);
+    return static_cast<int>(own_body_.linear.size()) - 1;
   };
   auto add_joint = [&](int a, int b, int c, double linear_stiffness, double segment, double factor) {
-    if (factor > 0) body_.add_angular_spring(a, b, c, factor * linear_stiffness * segment * segment, kNaN);
+    if (factor > 0) own_body_.add_angular_spring(a, b, c, factor * linear_stiffness * segment * segment, kNaN);
   };
   if (s.model == UmbrellaModel::angular) {
     for (int i = 0; i + 1 < n; ++i) add_spring(u[i], u[i + 1], s.bell_modulus_pa, area_bell);
@@ -131,7 +131,7 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
     const std::vector<Vec2> normals = outward_normals(profile);
     const double depth = std::max(s.thickness_m, spacing);
     for (int i = 0; i < n; ++i)
-      layout_.exumbrella.push_back(body_.add_point(profile[static_cast<std::size_t>(i)] + depth * normals[static_cast<std::size_t>(i)], s.point_mass_kg));
+      layout_.exumbrella.push_back(own_body_.add_point(profile[static_cast<std::size_t>(i)] + depth * normals[static_cast<std::size_t>(i)], s.point_mass_kg));
     const auto& e = layout_.exumbrella;
     for (int i = 0; i < n; ++i) {
       add_spring(u[i], e[i], s.bell_modulus_pa, area_bell);
@@ -156,7 +156,7 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
     gap = count > 0 ? gap / count : spacing;
     const int spring = add_spring(u[k], u[n - 1 - k], s.muscle_modulus_pa, gap * gap);
     layout_.muscle_springs.push_back(spring);
-    layout_.muscle_uncontracted_m.push_back(body_.linear.rest_length[static_cast<std::size_t>(spring)]);
+    layout_.muscle_uncontracted_m.push_back(own_body_.linear.rest_length[static_cast<std::size_t>(spring)]);
     // Springs near the aperture re-expand more slowly (Fig. 7.5): exponent from p_aperture to 1.
     ContractionProfile p = s.profile;
     const double toward_apex = muscles > 1 ? static_cast<double>(k) / (muscles - 1) : 1.0;
@@ -178,7 +178,7 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
     const int inner = side == 0 ? u[1] : u[static_cast<std::size_t>(n - 2)];
     std::vector<int> strand{tip};
     for (int k = 1; k <= tentacle_points; ++k)
-      strand.push_back(body_.add_point(body_.points.position[static_cast<std::size_t>(tip)] + (k * t_spacing) * down, s.point_mass_kg * s.tentacle_volume_fraction));
+      strand.push_back(own_body_.add_point(own_body_.points.position[static_cast<std::size_t>(tip)] + (k * t_spacing) * down, s.point_mass_kg * s.tentacle_volume_fraction));
     const double kt = stiffness(s.bell_modulus_pa, area_tentacle, t_spacing);
     for (std::size_t k = 0; k + 1 < strand.size(); ++k) add_spring(strand[k], strand[k + 1], s.bell_modulus_pa, area_tentacle);
     add_joint(inner, tip, strand[1], kt, t_spacing, s.tentacle_bending_factor);
@@ -186,20 +186,49 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
       add_joint(strand[k - 1], strand[k], strand[k + 1], kt, t_spacing, s.tentacle_bending_factor);
     layout_.tentacles.push_back(strand);
   }
-  base_stiffness_ = body_.linear.stiffness;
-  base_joint_stiffness_ = body_.angular.stiffness;
-  base_rest_angle_ = body_.angular.rest_angle;
+  base_stiffness_ = own_body_.linear.stiffness;
+  base_joint_stiffness_ = own_body_.angular.stiffness;
+  base_rest_angle_ = own_body_.angular.rest_angle;
   // Umbrella joints belong to the left (before the apex) or the right side; tentacle joints to neither.
-  for (std::size_t a = 0; a < body_.angular.size(); ++a) {
-    const int i = body_.angular.i[a], j = body_.angular.j[a], k = body_.angular.k[a];
+  for (std::size_t a = 0; a < own_body_.angular.size(); ++a) {
+    const int i = own_body_.angular.i[a], j = own_body_.angular.j[a], k = own_body_.angular.k[a];
     const bool umbrella = i < n && j < n && k < n;
     joint_side_.push_back(!umbrella || j == layout_.apex ? 0 : (j < layout_.apex ? -1 : 1));
   }
+  point_count_ = own_body_.points.size();
   actuate(0.0);
 }
 
+void Jellyfish::move_into(elastic::Body& shared) {
+  if (body_ != &own_body_) throw std::logic_error("a jellyfish can be moved into a shared body only once");
+  const auto point_offset = static_cast<int>(shared.points.size());
+  first_point_ = shared.points.size();
+  first_linear_ = shared.linear.size();
+  first_angular_ = shared.angular.size();
+  const elastic::Body& part = own_body_;
+  // The coupled body ignores masses (the markers are massless, §4.3.2); a zero mass (weightless
+  // tentacles) becomes a token one that the body accepts.
+  for (std::size_t p = 0; p < part.points.size(); ++p)
+    shared.add_point(part.points.position[p], part.points.mass[p] > 0 ? part.points.mass[p] : 1e-6);
+  for (std::size_t s = 0; s < part.linear.size(); ++s)
+    shared.add_linear_spring(part.linear.i[s] + point_offset, part.linear.j[s] + point_offset,
+                             part.linear.stiffness[s], part.linear.rest_length[s]);
+  for (std::size_t s = 0; s < part.angular.size(); ++s)
+    shared.add_angular_spring(part.angular.i[s] + point_offset, part.angular.j[s] + point_offset,
+                              part.angular.k[s] + point_offset, part.angular.stiffness[s], part.angular.rest_angle[s]);
+  auto shift = [](std::vector<int>& indices, std::size_t by) {
+    for (int& i : indices) i += static_cast<int>(by);
+  };
+  shift(layout_.umbrella, first_point_);
+  shift(layout_.exumbrella, first_point_);
+  for (std::vector<int>& strand : layout_.tentacles) shift(strand, first_point_);
+  shift(layout_.muscle_springs, first_linear_);
+  body_ = &shared;
+  own_body_ = elastic::Body{};
+}
+
 Vec2 Jellyfish::heading() const {
-  const auto& x = body_.points.position;
+  const auto& x = body_->points.position;
   const Vec2 aperture = 0.5 * (x[static_cast<std::size_t>(layout_.umbrella.front())] +
                                x[static_cast<std::size_t>(layout_.umbrella.back())]);
   const Vec2 axis = x[static_cast<std::size_t>(layout_.umbrella[static_cast<std::size_t>(layout_.apex)])] - aperture;
@@ -220,9 +249,11 @@ void Jellyfish::set_gamma(double gamma) {
 
 void Jellyfish::set_stiffness_scale(double scale) {
   if (!(scale > 0 && std::isfinite(scale))) throw std::invalid_argument("stiffness scale must be > 0");
-  for (std::size_t s = 0; s < body_.linear.size(); ++s) body_.linear.stiffness[s] = scale * base_stiffness_[s];
-  for (int m : layout_.muscle_springs) body_.linear.stiffness[static_cast<std::size_t>(m)] = base_stiffness_[static_cast<std::size_t>(m)];
-  for (std::size_t a = 0; a < body_.angular.size(); ++a) body_.angular.stiffness[a] = scale * base_joint_stiffness_[a];
+  auto& linear = body_->linear.stiffness;
+  for (std::size_t s = 0; s < base_stiffness_.size(); ++s) linear[first_linear_ + s] = scale * base_stiffness_[s];
+  for (int m : layout_.muscle_springs) linear[static_cast<std::size_t>(m)] = base_stiffness_[static_cast<std::size_t>(m) - first_linear_];
+  for (std::size_t a = 0; a < base_joint_stiffness_.size(); ++a)
+    body_->angular.stiffness[first_angular_ + a] = scale * base_joint_stiffness_[a];
 }
 
 void Jellyfish::set_steer_target(std::optional<Vec2> target_m) {
@@ -232,7 +263,8 @@ void Jellyfish::set_steer_target(std::optional<Vec2> target_m) {
   steer_has_heading_ = false;
   if (!target_m) {
     steer_bias_ = 0.0;
-    body_.angular.rest_angle = base_rest_angle_;
+    std::copy(base_rest_angle_.begin(), base_rest_angle_.end(),
+              body_->angular.rest_angle.begin() + static_cast<std::ptrdiff_t>(first_angular_));
   }
 }
 
@@ -243,7 +275,7 @@ void Jellyfish::steer(double t) {
   if (cycle != steer_updated_phase_) {
     steer_updated_phase_ = cycle;
     const Vec2 h = heading();
-    const auto& x = body_.points.position;
+    const auto& x = body_->points.position;
     const Vec2 aperture = 0.5 * (x[static_cast<std::size_t>(layout_.umbrella.front())] +
                                  x[static_cast<std::size_t>(layout_.umbrella.back())]);
     const Vec2 to_target = spec_.steer_target_m - aperture;
@@ -265,10 +297,10 @@ void Jellyfish::steer(double t) {
   // The bias is the whole side's extra bend, shared evenly by its joints.
   const double joints_per_side = std::max(1.0, static_cast<double>(layout_.apex) - 1.0);
   const double per_joint = std::abs(steer_bias_) * contraction / joints_per_side;
-  for (std::size_t a = 0; a < body_.angular.size(); ++a) {
+  for (std::size_t a = 0; a < base_rest_angle_.size(); ++a) {
     const int side = joint_side_[a];
     const bool active = (side < 0 && steer_bias_ > 0) || (side > 0 && steer_bias_ < 0);
-    body_.angular.rest_angle[a] = base_rest_angle_[a] - (active ? per_joint : 0.0);
+    body_->angular.rest_angle[first_angular_ + a] = base_rest_angle_[a] - (active ? per_joint : 0.0);
   }
 }
 
@@ -282,14 +314,14 @@ void Jellyfish::actuate(double t) {
     const auto spring = static_cast<std::size_t>(layout_.muscle_springs[k]);
     const double l_ru = layout_.muscle_uncontracted_m[k];
     if (spec_.closed_loop) {
-      const auto& x = body_.points.position;
-      const double length = norm(x[static_cast<std::size_t>(body_.linear.j[spring])] - x[static_cast<std::size_t>(body_.linear.i[spring])]);
-      body_.linear.rest_length[spring] =
+      const auto& x = body_->points.position;
+      const double length = norm(x[static_cast<std::size_t>(body_->linear.j[spring])] - x[static_cast<std::size_t>(body_->linear.i[spring])]);
+      body_->linear.rest_length[spring] =
           controllers_[k].update(t - layout_.muscle_delay_s[k] + spec_.phase_cycles / spec_.frequency_hz, length, l_ru,
-                                 body_.linear.rest_length[spring], spec_.gamma, spec_.frequency_hz,
+                                 body_->linear.rest_length[spring], spec_.gamma, spec_.frequency_hz,
                                  spec_.profile.contract_fraction);
     } else {
-      body_.linear.rest_length[spring] = contracted_rest_length(l_ru, spec_.gamma, muscle_activation(k, t));
+      body_->linear.rest_length[spring] = contracted_rest_length(l_ru, spec_.gamma, muscle_activation(k, t));
     }
   }
   if (spec_.steering || steer_bias_ != 0.0) steer(t);
@@ -297,7 +329,7 @@ void Jellyfish::actuate(double t) {
 
 std::vector<Vec2> Jellyfish::umbrella_points() const {
   std::vector<Vec2> p;
-  for (int i : layout_.umbrella) p.push_back(body_.points.position[static_cast<std::size_t>(i)]);
+  for (int i : layout_.umbrella) p.push_back(body_->points.position[static_cast<std::size_t>(i)]);
   return p;
 }
 
@@ -307,7 +339,7 @@ SliceFrame Jellyfish::slice_frame(double t) const {
   f.umbrella = umbrella_points();
   for (const auto& strand : layout_.tentacles) {
     std::vector<Vec2> line;
-    for (int i : strand) line.push_back(body_.points.position[static_cast<std::size_t>(i)]);
+    for (int i : strand) line.push_back(body_->points.position[static_cast<std::size_t>(i)]);
     f.tentacles.push_back(std::move(line));
   }
   const int n = static_cast<int>(f.umbrella.size());

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "jellysim/geometry/obstacle_mesh.hpp"
@@ -76,6 +77,42 @@ class FollowCamera {
   Vec3 target_;
   bool started_ = false;
 };
+
+/// The box (slice plane z = 0, bells revolved about their axes) that holds every jellyfish in every
+/// recorded frame: the umbrellas and tentacles in x and y, and ± the widest umbrella's half width in z.
+std::array<Vec3, 2> path_bounds(const std::vector<std::vector<jellyfish::SliceFrame>>& school) {
+  Vec3 lo{INFINITY, INFINITY, 0.0}, hi{-INFINITY, -INFINITY, 0.0};
+  double half_width = 0.0;
+  auto take = [&](Vec2 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), 0.0};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), 0.0};
+  };
+  for (const auto& frames : school)
+    for (const jellyfish::SliceFrame& f : frames) {
+      for (Vec2 p : f.umbrella) take(p);
+      for (const auto& strand : f.tentacles)
+        for (Vec2 p : strand) take(p);
+      if (!f.umbrella.empty()) half_width = std::max(half_width, 0.5 * norm(f.umbrella.back() - f.umbrella.front()));
+    }
+  lo.z = -half_width;
+  hi.z = half_width;
+  return {lo, hi};
+}
+
+/// One camera for the whole animation: looking at the middle of the path's box from the configured
+/// direction, at the follow camera's distance or further, so that the box's bounding sphere fits
+/// the picture's height. The bell then moves across the picture as it swims.
+Camera path_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& s,
+                   const geometry::Mesh& first) {
+  const auto [lo, hi] = path_bounds(school);
+  const geometry::Bounds b = geometry::bounds(first);
+  const Vec3 size = b.max - b.min;
+  const double extent = std::max({size.x, size.y, size.z});
+  const double radius = 0.5 * geometry::norm(hi - lo);
+  const double half_fov = 0.5 * s.fov_y_deg * std::numbers::pi / 180.0;
+  const double distance = std::max(s.camera_distance * extent, 1.05 * radius / std::sin(half_fov));
+  return camera_looking_at(0.5 * (lo + hi), view_direction(s), distance, s.fov_y_deg);
+}
 
 std::string base64(const std::string& bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -156,6 +193,7 @@ nlohmann::ordered_json AnimationOutputs::figures() const {
   j["glb_bytes"] = glb_bytes;
   j["renderer"] = renderer;
   j["viewer_has_script"] = viewer_has_script;
+  j["bell_screen_travel"] = bell_screen_travel;
   j["files"] = files;
   return j;
 }
@@ -231,12 +269,14 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   std::unique_ptr<Mp4Writer> video;
   const auto video_tmp = out.temporary_for("jellyfish.mp4");
   if (s.video) video = std::make_unique<Mp4Writer>(video_tmp, s.width_px, s.height_px, s.fps);
-  const io::OutputDir frame_dir(out.file("frames")), mesh_dir(out.file("meshes"));
+  const io::OutputDir frame_dir(out.subdirectory("frames")), mesh_dir(out.subdirectory("meshes"));
 
   AnimationOutputs result;
   result.renderer = renderer ? renderer->renderer_name() : "";
   geometry::Animation animation;
   std::unique_ptr<FollowCamera> camera;
+  std::optional<Camera> fixed_camera;
+  std::optional<std::array<double, 2>> first_on_screen;
   double geometry_s = 0.0, render_s = 0.0;
   RgbImage image;  // reused frame to frame
   std::vector<geometry::FrameGeometry> parts(school.size());
@@ -251,6 +291,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       merge_meshes(parts, g.mesh);
     }
     if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);  // frames the jellyfish only
+    if (s.camera == "fixed" && !fixed_camera) fixed_camera = path_camera(school, s, g.mesh);
     if (prisms) {
       try {
         prisms->append(obstacles[k], g.mesh);
@@ -263,7 +304,11 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
     Vec3 centre{};
     for (const auto& part : parts) centre = centre + (1.0 / static_cast<double>(parts.size())) * umbrella_centre(part);
-    const Camera view = camera->next(centre);
+    const Camera followed = camera->next(centre);
+    const Camera view = fixed_camera ? *fixed_camera : followed;
+    const std::array<double, 2> on_screen = screen_position(view, centre);
+    if (!first_on_screen) first_on_screen = on_screen;
+    result.bell_screen_travel = std::hypot(on_screen[0] - (*first_on_screen)[0], on_screen[1] - (*first_on_screen)[1]);
     if (pixels) {
       t0 = Clock::now();
       renderer->render(g.mesh, view, s.style, image);

@@ -259,6 +259,17 @@ Camera camera_looking_at(Vec3 target, Vec3 from, double distance_m, double fov_y
   return c;
 }
 
+std::array<double, 2> screen_position(const Camera& camera, Vec3 p) {
+  // The same look-at frame and perspective as the renderer's view and projection matrices.
+  const Vec3 forward = geometry::normalized(camera.target - camera.eye);
+  const Vec3 right = geometry::normalized(geometry::cross(forward, camera.up));
+  const Vec3 up = geometry::cross(right, forward);
+  const Vec3 d = p - camera.eye;
+  const double depth = geometry::dot(d, forward);
+  const double half_height = depth * std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0);
+  return {0.5 * geometry::dot(d, right) / half_height, 0.5 * geometry::dot(d, up) / half_height};
+}
+
 bool offscreen_gl_available(std::string* why) {
   EGLDisplay d = acquire_display(why);
   if (d == EGL_NO_DISPLAY) return false;

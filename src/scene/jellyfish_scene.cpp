@@ -152,7 +152,7 @@ ParameterTable make_jellyfish_scene() {
 }
 
 /// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
-jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::TankSpec& t) {
+jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::TankSpec& t) {
   const Reader r(c, jellyfish_scene());
   jellyfish::JellyfishSpec j;
   j.aperture_centre_m = r.vec2("jellyfish.position");
@@ -169,7 +169,7 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const jellyfish::Ta
   j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
                                                                        : jellyfish::UmbrellaModel::angular;
   const double spacing = r.number("jellyfish.spacing");
-  j.max_spacing_m = spacing > 0 ? spacing : jellyfish::peskin_spacing(t);
+  j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
   j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
   j.bell_modulus_pa = r.number("jellyfish.bell_modulus");
   j.muscle_modulus_pa = r.number("jellyfish.muscle_modulus");
@@ -327,7 +327,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
     throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
                      " is out of range (0, duration = " + io::format_number(s.duration_s) + "]");
 
-  jellyfish::TankSpec& t = s.tank;
+  coupling::TankSpec& t = s.tank;
   t.width_m = r.number("tank.width");
   t.height_m = r.number("tank.height");
   const auto cells = r.integers("tank.cells");
@@ -354,9 +354,9 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.current_m_per_s = r.vec2("tank.current");
   const std::string symmetry = r.choice("tank.symmetry");
   t.half_tank = r.boolean("tank.half_tank");
-  t.symmetry = symmetry == "auto"     ? jellyfish::MirrorSymmetry::automatic
-               : symmetry == "mirror" ? jellyfish::MirrorSymmetry::mirror
-                                      : jellyfish::MirrorSymmetry::none;
+  t.symmetry = symmetry == "auto"     ? coupling::MirrorSymmetry::automatic
+               : symmetry == "mirror" ? coupling::MirrorSymmetry::mirror
+                                      : coupling::MirrorSymmetry::none;
 
   if (r.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
   read_objects(c, s);
@@ -380,7 +380,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("scene layout: ") + e.what());
   }
-  if (t.symmetry == jellyfish::MirrorSymmetry::mirror)
+  if (t.symmetry == coupling::MirrorSymmetry::mirror)
     if (const std::string problem = jellyfish::mirror_symmetry_problem(s); !problem.empty())
       throw InputError("field 'tank.symmetry' is \"mirror\", but the scene is not its own mirror image about the "
                        "tank's centre line: " + problem + " (use \"auto\" or \"none\")");

@@ -30,6 +30,11 @@ ParameterTable make_rules() {
       rule("time.thin_boundary_limit", Type::boolean, "", {}, "cap the step by eq. 5.31 (particles against a thin body)"),
       rule("time.frame_interval", Type::number, "s", positive, "time between recorded frames"),
       rule("output.max_speed", Type::number, "m/s", positive, "a point or particle faster than this stops the run"),
+      rule("output.strip_frames", Type::integer, "", Range::closed(1, 64), "panels in the frame strip (NAME.png)"),
+      rule("output.strip_window", Type::number, "s", positive, "bar collisions: time around the first contact shown in the strip"),
+      rule("output.strip_start", Type::number, "s", non_negative, "mosquito larva: first frame shown in the strip"),
+      rule("output.velocity_scale", Type::number, "s", non_negative,
+           "mosquito larva: length of the drawn body-point velocity vectors per m/s"),
       rule("bar.length", Type::number, "m", positive, "bar length (Figure 8.1: 0.45)"),
       rule("bar.width", Type::number, "m", positive, "bar width"),
       rule("bar.segments", Type::integer, "", Range::closed(1, 10000), "cells along the bar"),
@@ -72,6 +77,21 @@ ParameterTable make_rules() {
       rule("larva.frequency", Type::number, "Hz", non_negative, "wriggles per second"),
       rule("larva.wave_cells", Type::number, "", Range::closed(-10.0, 10.0), "phase shift along the body, in segments"),
       rule("larva.gravity", Type::vec2, "m/s²", {}, "gravity on the larva's points"),
+      rule("wall.gap", Type::number, "m", positive, "bar-hits-wall: distance of the static boundary below the bar's lower face"),
+      rule("particle.position", Type::vec2, "m", {}, "bar-hits-particle: the point mass's start, relative to bar.pivot"),
+      rule("particle.velocity", Type::vec2, "m/s", {}, "bar-hits-particle: the point mass's initial velocity"),
+      rule("particle.mass", Type::number, "kg", positive, "bar-hits-particle: mass of the point"),
+      rule("particle.gravity", Type::vec2, "m/s²", {}, "bar-hits-particle: gravity on the point"),
+      rule("emitter.interval", Type::number, "s", positive, "sph-stream: time between released particles"),
+      rule("emitter.offset", Type::vec2, "m", {}, "sph-stream: the emitter, from the top-left corner of the box (inside it)"),
+      rule("emitter.velocity", Type::vec2, "m/s", {}, "sph-stream: velocity of a released particle"),
+      rule("emitter.mass", Type::number, "kg", positive, "sph-stream: mass of a released particle"),
+      rule("emitter.max_count", Type::integer, "", Range::closed(0, 100000), "sph-stream: particles released at most"),
+      rule("study.gas_constants", Type::numbers, "m²/s²", positive, "integrator-cost: the gas constants κ_p run"),
+      rule("study.integrators", Type::choices, "", {}, "integrator-cost: the integrators compared", ode::integrator_names()),
+      rule("study.error_controls", Type::choices, "", {},
+           "integrator-cost: the error controls compared (embedded only for methods with a pair)",
+           {"embedded", "step-doubling"}),
   };
   return ParameterTable("particle", "", std::move(p));
 }
@@ -165,12 +185,70 @@ bool near_larva(const sph::LarvaSpec& l, Vec2 x, double margin) {
 
 }  // namespace
 
+Box read_box(const io::Config& c) {
+  const Reader r(c, particle_scene_rules());
+  const Box b{r.vec2("box.min"), r.vec2("box.max")};
+  if (!(b.max.x > b.min.x && b.max.y > b.min.y))
+    throw InputError("field 'box.max' must exceed 'box.min' in both coordinates");
+  return b;
+}
+
+StripOutput read_strip_output(const io::Config& c) {
+  const Reader r(c, particle_scene_rules());
+  StripOutput o;
+  o.frames = static_cast<int>(r.integer("output.strip_frames"));
+  if (c.has("output.strip_window")) o.window_s = r.number("output.strip_window");
+  if (c.has("output.strip_start")) o.start_s = r.number("output.strip_start");
+  if (c.has("output.velocity_scale")) o.velocity_scale_s = r.number("output.velocity_scale");
+  return o;
+}
+
+double read_wall_gap(const io::Config& c) { return Reader(c, particle_scene_rules()).number("wall.gap"); }
+
+PointParticle read_point_particle(const io::Config& c) {
+  const Reader r(c, particle_scene_rules());
+  PointParticle p;
+  const Vec2 pivot = r.vec2("bar.pivot");
+  p.position = pivot + r.vec2("particle.position");
+  p.velocity = r.vec2("particle.velocity");
+  p.mass_kg = r.number("particle.mass");
+  p.gravity = r.vec2("particle.gravity");
+  return p;
+}
+
+sph::Emitter read_emitter(const io::Config& c, const Box& box) {
+  const Reader r(c, particle_scene_rules());
+  sph::Emitter e;
+  e.interval_s = r.number("emitter.interval");
+  e.position = Vec2{box.min.x, box.max.y} + r.vec2("emitter.offset");  // from the top-left corner
+  e.velocity = r.vec2("emitter.velocity");
+  e.mass_kg = r.number("emitter.mass");
+  e.max_count = static_cast<std::size_t>(r.integer("emitter.max_count"));
+  const Vec2 x = e.position;
+  if (!(x.x > box.min.x && x.x < box.max.x && x.y > box.min.y && x.y < box.max.y))
+    throw InputError("field 'emitter.offset' puts the emitter outside the box");
+  return e;
+}
+
+CostStudy read_cost_study(const io::Config& c) {
+  const Reader r(c, particle_scene_rules());
+  CostStudy s;
+  s.gas_constants = r.numbers("study.gas_constants");
+  s.integrators = r.choices("study.integrators");
+  s.error_controls = r.choices("study.error_controls");
+  return s;
+}
+
+LarvaScene build_larva_scene(const io::Config& c) {
+  return build_larva_scene(c, Reader(c, particle_scene_rules()).number("fluid.gas_constant"));
+}
+
 LarvaScene build_larva_scene(const io::Config& c, double gas_constant) {
   LarvaScene r;
   sph::Scene& s = r.scene;
   const Reader rd(c, particle_scene_rules());
-  const Vec2 lo = rd.vec2("box.min"), hi = rd.vec2("box.max");
-  if (!(hi.x > lo.x && hi.y > lo.y)) throw InputError("field 'box.max' must exceed 'box.min' in both coordinates");
+  const Box box = read_box(c);
+  const Vec2 lo = box.min, hi = box.max;
   s.sph = read_fluid_parameters(c);
   s.sph.gas_constant = gas_constant;
   s.walls = sph::box_walls(lo, hi);

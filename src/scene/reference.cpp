@@ -1,5 +1,6 @@
 #include "jellysim/scene/reference.hpp"
 
+#include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/live_parameters.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
@@ -7,6 +8,18 @@
 #include "jellysim/scene/study_scenes.hpp"
 
 namespace jellysim::scene {
+namespace {
+
+/// A table's page without its "Top level" section when that is empty (a table of rules for
+/// sections only).
+std::string without_empty_top_level(std::string page) {
+  const std::string empty =
+      "\n### Top level\n\n| key | default | unit | allowed | description |\n|---|---|---|---|---|\n";
+  if (page.starts_with(empty + "\n###")) page.erase(0, empty.size());
+  return page;
+}
+
+}  // namespace
 
 std::string parameters_reference() {
   std::string page =
@@ -37,12 +50,24 @@ std::string parameters_reference() {
   page += taylor_green_scene().reference_markdown();
   page += "\n## Fluid solver cost (`jellysim experiment solver-cost`; experiments/solver-cost.toml)\n";
   page += solver_cost_scene().reference_markdown();
+  page += "\n## Integrator order (`jellysim experiment integrator-order`; experiments/integrator-order.toml)\n";
+  page += integrator_order_scene().reference_markdown();
+  page +=
+      "\n## Figure 8.19's stages (`jellysim experiment stages`; experiments/stages.toml)\n\n"
+      "The [render] section starts from the 3D rendering defaults above; the figure changes these.\n";
+  page += stages_scene().reference_markdown();
+  page +=
+      "\n## Jellyfish studies (`structural-instability`, `numerical-instability`, `frequency-sweep`, `sweep`, "
+      "`fluidless`, `coupling-stability`, `steering`)\n\n"
+      "These extend the jellyfish scene (every field above applies) with fields of their own, which\n"
+      "follow these rules; each study sets its own defaults (`jellysim scenes NAME`).\n";
+  page += without_empty_top_level(jellyfish_study_rules().reference_markdown());
   page +=
       "\n## Elastic-bar and particle-fluid scenes (`swinging-bar`, `bar-hits-wall`, `bar-hits-particle`, "
       "`sph-stream`, `mosquito-larva`, `integrator-cost`)\n\n"
-      "The sections these scenes share follow one set of rules (type, unit, allowed values); each scene\n"
-      "sets its own defaults (`jellysim scenes NAME`). Fields of one experiment alone (its [output]\n"
-      "strip, [wall], [particle], [emitter], [study]) are described in its definition file.\n";
+      "The sections these scenes share, and the fields of one experiment alone (its [output] strip,\n"
+      "[wall], [particle], [emitter], [study]), follow one set of rules (type, unit, allowed values);\n"
+      "each scene sets its own defaults (`jellysim scenes NAME`).\n";
   page += particle_scene_rules().reference_markdown();
   page +=
       "\n## The viewer's live parameters (`jellysim view`: sliders and scripted `set NAME [INDEX] VALUE`)\n\n"

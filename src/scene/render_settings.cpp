@@ -16,7 +16,6 @@ ParameterTable make_render_parameters() {
   std::vector<Parameter> p{
       integer("render.width", "640", 16, 8192, "pixels (frames and video)"),
       integer("render.height", "480", 16, 8192, "pixels"),
-      number("render.fps", "30.0", "1/s", Range{0.0, 240.0, true, false}, "video frames per second"),
       integer("render.latitude_samples", "65", 5, 100001, "rendering-model samples per umbrella surface (odd)"),
       integer("render.disc_points", "64", 8, 100000, "points around each disc, j_max"),
       integer("render.tentacle_samples", "40", 2, 100000, "samples along each tentacle"),
@@ -27,8 +26,10 @@ ParameterTable make_render_parameters() {
       number("render.camera_distance", "2.6", "first-frame mesh extents", Range::positive(), "camera distance"),
       number("render.camera_elevation_deg", "12.0", "°", Range::closed(-89.0, 89.0), "camera elevation"),
       number("render.camera_azimuth_deg", "25.0", "°", Range::closed(-360.0, 360.0), "camera azimuth"),
+      choice("render.camera", "fixed", {"fixed", "follow"},
+             "fixed: one camera framing the whole path (the bell swims across the picture); follow: tracks the bell"),
       number("render.camera_follow", "0.25", "", Range{0.0, 1.0, true, false},
-             "fraction of the way to the jellyfish per frame"),
+             "follow camera: fraction of the way to the jellyfish per frame"),
       number("render.fov_deg", "40.0", "°", Range::closed(5.0, 120.0), "vertical field of view"),
       number("render.obstacle_depth", "0.12", "m", Range{0.0, 100.0, true, false},
              "obstacles are drawn as prisms this long across the slice"),
@@ -97,7 +98,6 @@ render::PipelineSettings read_render_settings(const io::Config& c) {
   geometry::GeometrySettings& g = s.geometry;
   s.width_px = static_cast<int>(r.integer("render.width"));
   s.height_px = static_cast<int>(r.integer("render.height"));
-  s.fps = r.number("render.fps");
   g.latitude_samples = static_cast<int>(r.integer("render.latitude_samples"));
   if (g.latitude_samples % 2 == 0)
     throw InputError("field 'render.latitude_samples' = " + std::to_string(g.latitude_samples) + " must be odd");
@@ -111,6 +111,7 @@ render::PipelineSettings read_render_settings(const io::Config& c) {
   s.camera_distance = r.number("render.camera_distance");
   s.camera_elevation_deg = r.number("render.camera_elevation_deg");
   s.camera_azimuth_deg = r.number("render.camera_azimuth_deg");
+  s.camera = r.choice("render.camera");
   s.camera_follow = r.number("render.camera_follow");
   s.fov_y_deg = r.number("render.fov_deg");
   s.obstacle_depth_m = r.number("render.obstacle_depth");

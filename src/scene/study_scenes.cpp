@@ -3,6 +3,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 namespace jellysim::scene {
@@ -148,9 +149,9 @@ const ParameterTable& solver_cost_scene() {
   return table;
 }
 
-fluid::TaylorGreenSettings read_taylor_green(const io::Config& c) {
+studies::TaylorGreenSettings read_taylor_green(const io::Config& c) {
   const Reader r(c, taylor_green_scene());
-  fluid::TaylorGreenSettings s;
+  studies::TaylorGreenSettings s;
   s.flow = read_flow(r);
   s.end_time_s = r.number("flow.end_time");
   s.solvers = r.choices("study.solvers");
@@ -162,9 +163,9 @@ fluid::TaylorGreenSettings read_taylor_green(const io::Config& c) {
   return s;
 }
 
-fluid::SolverCostSettings read_solver_cost(const io::Config& c) {
+studies::SolverCostSettings read_solver_cost(const io::Config& c) {
   const Reader r(c, solver_cost_scene());
-  fluid::SolverCostSettings s;
+  studies::SolverCostSettings s;
   s.flow = read_flow(r);
   s.grids = read_grids(r);
   s.solvers = r.choices("study.solvers");
@@ -216,7 +217,7 @@ CavityScene read_cavity_scene(const io::Config& c) {
 MembraneScene read_membrane_scene(const io::Config& c) {
   const Reader r(c, oval_membrane_scene());
   MembraneScene m;
-  coupling::OvalMembraneSettings& s = m.membrane;
+  studies::OvalMembraneSettings& s = m.membrane;
   s.solver = r.choice("solver");
   s.cells = static_cast<int>(r.integer("membrane.cells"));
   s.box_m = r.number("membrane.box");
@@ -243,6 +244,8 @@ const ParameterTable* table_for_definition(std::string_view path) {
   if (path == "experiments/oval-membrane.toml") return &oval_membrane_scene();
   if (path == "experiments/taylor-green.toml") return &taylor_green_scene();
   if (path == "experiments/solver-cost.toml") return &solver_cost_scene();
+  if (path == "experiments/integrator-order.toml") return &integrator_order_scene();
+  if (path == "experiments/stages.toml") return &stages_scene();
   return nullptr;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "jellysim/jellyfish/obstacle.hpp"
 
@@ -18,7 +19,7 @@ constexpr double kStirRadiusCells = 2.5;
 
 ImVec2 im(Vec2 p) { return ImVec2(static_cast<float>(p.x), static_cast<float>(p.y)); }
 
-double distance_to_points(Vec2 p, const std::vector<Vec2>& points) {
+double distance_to_points(Vec2 p, std::span<const Vec2> points) {
   double best = std::numeric_limits<double>::infinity();
   for (Vec2 q : points) best = std::min(best, std::hypot(q.x - p.x, q.y - p.y));
   return best;
@@ -29,7 +30,8 @@ std::optional<std::size_t> jellyfish_at(Vec2 p, double radius_m, const jellyfish
   std::optional<std::size_t> hit;
   double best = radius_m;
   for (std::size_t i = 0; i < sim.jellyfish_count(); ++i) {
-    const double d = distance_to_points(p, sim.jellyfish(i).body().points.position);
+    const jellyfish::Jellyfish& j = sim.jellyfish(i);
+    const double d = distance_to_points(p, std::span(j.body().points.position).subspan(j.first_point(), j.point_count()));
     if (d <= best) {
       best = d;
       hit = i;
@@ -53,7 +55,8 @@ void draw_body_springs(const PanelMapping& map, const jellyfish::Jellyfish& j, I
   for (int s : j.layout().muscle_springs) is_muscle[static_cast<std::size_t>(s)] = true;
   const ImU32 spring = selected ? IM_COL32(255, 255, 255, 255) : IM_COL32(230, 235, 240, 230);
   const ImU32 muscle = IM_COL32(255, 70, 60, 200);
-  for (std::size_t s = 0; s < body.linear.size(); ++s) {
+  const std::size_t first = j.first_linear_spring();
+  for (std::size_t s = first; s < first + j.linear_spring_count(); ++s) {
     const Vec2 a = pos[static_cast<std::size_t>(body.linear.i[s])];
     const Vec2 b = pos[static_cast<std::size_t>(body.linear.j[s])];
     list->AddLine(im(map.to_screen(a)), im(map.to_screen(b)), is_muscle[s] ? muscle : spring,

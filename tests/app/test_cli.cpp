@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "../cli_runner.hpp"
 
 namespace cli = jellysim::testing;
@@ -28,6 +30,44 @@ TEST(Cli, HelpDocumentsCommands) {
   const Result sub = run_cli("run --help");
   EXPECT_EQ(sub.exit_code, 0);
   for (const char* word : {"--out", "--set", "--duration"}) EXPECT_NE(sub.output.find(word), std::string::npos);
+}
+
+// Every --set example a command's help shows runs (they once named fields only swinging-bar has).
+TEST(Cli, EverySetExampleInTheHelpRuns) {
+  const std::regex example(R"(--set ([a-z_.]+=[^\s)`]+))");
+  const std::pair<std::string, std::string> commands[] = {
+      {"run", "run --duration 0.1"},
+      {"simulate", "simulate --duration 0.1"},
+      {"sweep", "sweep --duration 0.1"},
+      {"experiment", "experiment swinging-bar --duration 0.5"},
+  };
+  for (const auto& [command, run_args] : commands) {
+    const Result help = run_cli(command + " --help");
+    ASSERT_EQ(help.exit_code, 0) << command;
+    std::string sets;
+    int count = 0;
+    for (auto it = std::sregex_iterator(help.output.begin(), help.output.end(), example); it != std::sregex_iterator();
+         ++it) {
+      const std::string set = (*it)[1].str();
+      if (std::regex_match(set, std::regex(R"([a-z_.]+=(value|[A-Z]+))"))) continue;  // syntax, not an example
+      sets += " --set " + set;
+      ++count;
+    }
+    EXPECT_EQ(count, 2) << command << " --help shows two examples:\n" << help.output;
+    const fs::path dir = fresh_dir("set_example_" + command);
+    const Result r = run_cli(run_args + sets + " --quiet --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 0) << run_args << sets << "\n" << r.output;
+  }
+}
+
+// `jellysim scenes run` and `scenes simulate` print the scenes those commands run.
+TEST(Cli, ScenesPrintsTheCommandsScenesUnderTheirNames) {
+  const Result run = run_cli("scenes run");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output, run_cli("scenes animation").output);
+  const Result simulate = run_cli("scenes simulate");
+  EXPECT_EQ(simulate.exit_code, 0) << simulate.output;
+  EXPECT_EQ(simulate.output, run_cli("scenes jellyfish").output);
 }
 
 TEST(Cli, BadUsageExitsTwo) {

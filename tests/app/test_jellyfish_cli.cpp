@@ -44,6 +44,29 @@ TEST(JellyfishCli, SimulateWritesMetricsPicturesFieldsAndSummary) {
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_DOUBLE_EQ(s["bell_height"].get<double>(), 0.028);
   EXPECT_NEAR(s["cycles"].get<double>(), 0.14, 1e-9);
+  // Every CSV reads back by its header: as many cells per row as columns, and in slices.csv the
+  // text column is `part` and the frame numbers are under `frame` (they were swapped once).
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() != ".csv") continue;
+    std::istringstream text(slurp(e.path()));
+    std::string header;
+    std::getline(text, header);
+    const auto cells = [](const std::string& line) { return std::count(line.begin(), line.end(), ',') + 1; };
+    for (std::string row; std::getline(text, row);) ASSERT_EQ(cells(row), cells(header)) << e.path() << ": " << row;
+  }
+  std::istringstream slices(slurp(dir / "slices.csv"));
+  std::string line;
+  std::getline(slices, line);
+  EXPECT_EQ(line, "part,frame,t,index,x,y");
+  int rows = 0;
+  while (std::getline(slices, line)) {
+    const std::string part = line.substr(0, line.find(','));
+    EXPECT_TRUE(part == "umbrella" || part.starts_with("tentacle_")) << line;
+    const std::string frame = line.substr(part.size() + 1, line.find(',', part.size() + 1) - part.size() - 1);
+    EXPECT_EQ(frame.find_first_not_of("0123456789"), std::string::npos) << line;
+    ++rows;
+  }
+  EXPECT_GT(rows, 0);
   fs::remove_all(dir);
 }
 
@@ -86,6 +109,58 @@ TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
   EXPECT_EQ(s["command"], "run");
   EXPECT_EQ(s["animation"]["frames"].get<int>(), 7);
+  fs::remove_all(dir);
+}
+
+// The main job shows travel: with the default fixed camera the bell's middle moves across the
+// picture (measured 0.334 picture heights over the 3 cycles; the follow camera kept it in place).
+TEST(JellyfishCli, MainJobShowsTheBellSwimAcrossThePicture) {
+  const fs::path dir = fresh("run_travel"), follow = fresh("run_follow");
+  const std::string lean = " --quiet --set render.png_frames=false --set render.video=false --set render.viewer=false"
+                           " --set render.glb=false --out ";
+  const Result r = run_cli("run" + lean + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_GE(s["animation"]["bell_screen_travel"].get<double>(), 0.25);
+  EXPECT_NEAR(s["animation"]["bell_screen_travel"].get<double>(), 0.334, 0.01);
+  const Result rf = run_cli("run --duration 1 --set render.camera=\"follow\"" + lean + follow.string());
+  ASSERT_EQ(rf.exit_code, 0) << rf.output;
+  const auto sf = nlohmann::json::parse(slurp(follow / "summary.json"));
+  EXPECT_LT(sf["animation"]["bell_screen_travel"].get<double>(), 0.05);
+  fs::remove_all(dir);
+  fs::remove_all(follow);
+}
+
+// Re-running into the same --out replaces the earlier run: a short run over a longer one leaves
+// none of the longer one's frames (it once left 130 beside 16), and the manifest lists every file.
+TEST(JellyfishCli, RerunningIntoTheSameOutReplacesTheEarlierRun) {
+  const fs::path dir = fresh("rerun");
+  const std::string args = " --quiet --set output.vtk=false --set output.picture_every=1 --out " + dir.string();
+  ASSERT_EQ(run_cli("simulate --duration 0.3" + args).exit_code, 0);
+  const Result r = run_cli("simulate --duration 0.1" + args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  int pictures = 0, files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    ++files;
+    pictures += e.path().parent_path().filename() == "frames" ? 1 : 0;
+  }
+  EXPECT_EQ(pictures, s["frames"].get<int>());
+  std::istringstream manifest(slurp(dir / "manifest.txt"));
+  int listed = 0;
+  for (std::string line; std::getline(manifest, line);) {
+    if (line.starts_with("#")) continue;
+    EXPECT_TRUE(fs::exists(dir / line)) << line;
+    ++listed;
+  }
+  EXPECT_EQ(listed + 1, files);  // every file but the manifest itself
+  fs::create_directories(dir / "mine");
+  std::ofstream(dir / "mine" / "notes.txt") << "not jellysim's";
+  const Result refused = run_cli("simulate --duration 0.1" + args);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.output.find("mine/notes.txt"), std::string::npos) << refused.output;
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
   fs::remove_all(dir);
 }
 

@@ -161,7 +161,7 @@ TEST(Swim, SymmetricBellStaysSymmetricForTwoCycles) {
   jellyfish::SwimSettings s = default_scene();
   s.duration_s = 2.0 / s.jellyfish().frequency_hz;
   s.school.front().aperture_centre_m.x = 0.5 * s.tank.width_m;
-  s.tank.symmetry = jellyfish::MirrorSymmetry::none;
+  s.tank.symmetry = coupling::MirrorSymmetry::none;
   const SwimRecording rec = run_swim(s, {}, nullptr, {});
   ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
   EXPECT_FALSE(rec.stats.mirror_symmetric);
@@ -173,7 +173,7 @@ TEST(Swim, SymmetricBellStaysSymmetricForTwoCycles) {
   EXPECT_LT(mismatch, 1e-12);
   EXPECT_LT(lateral, 3e-13);
 
-  s.tank.symmetry = jellyfish::MirrorSymmetry::automatic;
+  s.tank.symmetry = coupling::MirrorSymmetry::automatic;
   const SwimRecording kept = run_swim(s, {}, nullptr, {});
   ASSERT_TRUE(kept.stats.mirror_symmetric) << kept.stats.symmetry_note;
   ASSERT_EQ(kept.frames.size(), rec.frames.size());
@@ -212,7 +212,7 @@ TEST(SlowSwim, SymmetricBellStaysSymmetricForFiveCycles) {
   s.duration_s = 5.0 / s.jellyfish().frequency_hz;
   s.school.front().aperture_centre_m.x = 0.5 * s.tank.width_m;
   s.coupling.krylov_tolerance = 1e-10;
-  s.tank.symmetry = jellyfish::MirrorSymmetry::none;  // the solver's own symmetry
+  s.tank.symmetry = coupling::MirrorSymmetry::none;  // the solver's own symmetry
   const SwimRecording rec = run_swim(s, {}, nullptr, {});
   ASSERT_TRUE(rec.stats.failure.empty()) << rec.stats.failure;
   const double axis_x = 0.5 * s.tank.width_m;

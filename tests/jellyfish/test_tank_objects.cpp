@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
@@ -22,8 +23,8 @@ Vec2 centroid(const std::vector<Vec2>& p) {
 
 // Two identical jellyfish placed as mirror images about the tank's centre line push water at each
 // other; whatever they do, they do it symmetrically: over two cycles their centroids stay mirror
-// images (x) and level (y) to GMRES-tolerance level (measured 4.7e-14 and 2.9e-13 m; allowed
-// 1e-6 m), while each moves forward. This is the solver's own symmetry (tank.symmetry = "none").
+// images (x) and level (y) to round-off (measured 4.7e-14 and 2.9e-13 m; allowed 1e-9 m), while
+// each moves forward. This is the solver's own symmetry (tank.symmetry = "none").
 TEST(Tank, TwoJellyfishSideBySideMoveSymmetrically) {
   const jellyfish::SwimSettings s = read_swim_settings(scene(R"(
 duration = 2.857142857142857
@@ -47,12 +48,76 @@ position = [0.46, 0.3]
   });
   ASSERT_TRUE(stats.failure.empty()) << stats.failure;
   const Vec2 left = centroid(sim.jellyfish(0).umbrella_points()), right = centroid(sim.jellyfish(1).umbrella_points());
-  EXPECT_LT(worst_x, 1e-6);
-  EXPECT_LT(worst_y, 1e-6);
+  EXPECT_LT(worst_x, 1e-9);
+  EXPECT_LT(worst_y, 1e-9);
   EXPECT_GT(left.y - left0.y, 0.005) << "each swims forward";
   const double separation_change = (right.x - left.x) - (right0.x - left0.x);
   std::printf("separation change over two cycles: %.3g m; mirror mismatch x %.3g m, y %.3g m\n", separation_change,
               worst_x, worst_y);
+}
+
+// One copy of the state: every jellyfish reads and actuates its markers in the world's body, so
+// what the coupling moves is what the jellyfish sees, and dragging one moves only its markers.
+TEST(Tank, TheSchoolLivesInTheWorldsBody) {
+  const jellyfish::SwimSettings s = read_swim_settings(scene(R"(
+[jellyfish]
+position = [0.3, 0.3]
+[[objects]]
+type = "jellyfish"
+position = [0.5, 0.3]
+phase = 0.25
+)"));
+  jellyfish::SwimSimulation sim(s);
+  ASSERT_EQ(sim.jellyfish_count(), 2u);
+  const jellyfish::Jellyfish& a = sim.jellyfish(0);
+  const jellyfish::Jellyfish& b = sim.jellyfish(1);
+  EXPECT_EQ(&a.body(), &sim.body());
+  EXPECT_EQ(&b.body(), &sim.body());
+  EXPECT_EQ(b.first_point(), a.point_count());
+  EXPECT_EQ(b.first_linear_spring(), a.linear_spring_count());
+  EXPECT_EQ(a.point_count() + b.point_count(), sim.body().points.size());
+  for (int k = 0; k < 5; ++k) ASSERT_TRUE(sim.step().failure.empty());
+  // The umbrella the jellyfish reports is the world's markers after the steps.
+  const std::vector<Vec2> umbrella = b.umbrella_points();
+  for (std::size_t k = 0; k < umbrella.size(); ++k)
+    EXPECT_EQ(umbrella[k], sim.body().points.position[static_cast<std::size_t>(b.layout().umbrella[k])]);
+  // Its muscles were actuated in the world's body (phase 0.25: contracting, shorter than at rest).
+  const auto muscle = static_cast<std::size_t>(b.layout().muscle_springs.back());
+  EXPECT_LT(sim.body().linear.rest_length[muscle], b.layout().muscle_uncontracted_m.back());
+  const std::vector<Vec2> before = sim.body().points.position;
+  sim.move_jellyfish(1, {0.01, 0.0});
+  for (std::size_t p = 0; p < before.size(); ++p)
+    EXPECT_EQ(sim.body().points.position[p].x, before[p].x + (p >= b.first_point() ? 0.01 : 0.0));
+}
+
+// scenes/two-jellyfish.toml: two bells half a cycle apart each keep swimming upward. In the thesis's
+// coarse tank (3 cells per bell) the second turned 90 degrees within 2 s, and so does a lone bell
+// placed off the centre line there: the grid, not the neighbour. Measured on the resolved tank
+// over three cycles: largest tilts 8.2 and 4.5 degrees, distances 3.8 and 8.1 cm (the later one
+// swims into the water its neighbour set moving).
+TEST(SlowTank, TwoJellyfishKeepTheirHeadingOverThreeCycles) {
+  io::Config c = default_config(find_experiment("jellyfish"));
+  c.merge(io::Config::load(std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml"));
+  c.set("tank.tracers_per_side=0");
+  c.set("duration=4.285714285714286");  // three cycles at 0.7 Hz
+  jellyfish::SwimSimulation sim(read_swim_settings(c));
+  ASSERT_EQ(sim.jellyfish_count(), 2u);
+  const Vec2 start[2] = {centroid(sim.jellyfish(0).umbrella_points()), centroid(sim.jellyfish(1).umbrella_points())};
+  double worst_tilt_deg[2] = {0.0, 0.0};
+  const jellyfish::SwimRunStats stats = sim.run([&](const jellyfish::SwimSimulation& state) -> std::string {
+    for (std::size_t j = 0; j < 2; ++j) {
+      const Vec2 h = state.jellyfish(j).heading();
+      worst_tilt_deg[j] = std::max(worst_tilt_deg[j], std::abs(std::atan2(h.x, h.y)) * 180.0 / std::numbers::pi);
+    }
+    return {};
+  });
+  ASSERT_TRUE(stats.failure.empty()) << stats.failure;
+  for (std::size_t j = 0; j < 2; ++j) {
+    const double forward = centroid(sim.jellyfish(j).umbrella_points()).y - start[j].y;
+    std::printf("jellyfish %zu: largest tilt %.2f degrees, swam %.2f cm\n", j + 1, worst_tilt_deg[j], 100.0 * forward);
+    EXPECT_LT(worst_tilt_deg[j], 15.0) << "jellyfish " << j + 1;
+    EXPECT_GT(forward, 0.02) << "jellyfish " << j + 1 << " swims forward";
+  }
 }
 
 // Uniform flow from the west past a fixed cylinder (Re = U·D/ν ≈ 30): the fluid goes around it,

@@ -9,7 +9,9 @@
 #include <set>
 #include <sstream>
 
+#include "scene_test_util.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/live_parameters.hpp"
@@ -21,32 +23,19 @@
 namespace {
 
 using namespace jellysim;
+using jellysim::testing::error_of;
+using jellysim::testing::read_source_file;
 using scene::Parameter;
 using scene::ParameterTable;
 using scene::Type;
-
-std::string read_source_file(const std::string& relative) {
-  std::ifstream in(std::string(JELLYSIM_SOURCE_DIR) + "/" + relative, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 const std::vector<const ParameterTable*>& tables() {
   static const std::vector<const ParameterTable*> all{&scene::jellyfish_scene(), &scene::render_parameters(),
                                                       &scene::viewer_controls(), &scene::driven_cavity_scene(),
                                                       &scene::oval_membrane_scene(), &scene::taylor_green_scene(),
-                                                      &scene::solver_cost_scene()};
+                                                      &scene::solver_cost_scene(), &scene::integrator_order_scene(),
+                                                      &scene::stages_scene()};
   return all;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 /// Reads `key` of `config` by its type through the table (throws what the readers throw).
@@ -69,7 +58,8 @@ TEST(SceneParameters, DefinitionFilesAreTheirTables) {
                                    {"experiments/driven-cavity.toml", "driven-cavity"},
                                    {"experiments/oval-membrane.toml", "oval-membrane"},
                                    {"experiments/taylor-green.toml", "taylor-green"},
-                                   {"experiments/solver-cost.toml", "solver-cost"}}) {
+                                   {"experiments/solver-cost.toml", "solver-cost"},
+                                   {"experiments/integrator-order.toml", "integrator-order"}}) {
     const ParameterTable* table = scene::table_for_definition(path);
     ASSERT_NE(table, nullptr) << path;
     EXPECT_EQ(read_source_file(path), table->scene_toml())
@@ -147,8 +137,8 @@ TEST(SceneParameters, TheSceneFileCommentsGiveUnitAndRange) {
 TEST(SceneParameters, SpecDefaultsAreTheBuiltInScene) {
   const jellyfish::SwimSettings scene = scene::read_swim_settings(scene::jellyfish_scene().defaults());
   const jellyfish::SwimSettings structs;
-  const jellyfish::TankSpec& a = scene.tank;
-  const jellyfish::TankSpec& b = structs.tank;
+  const coupling::TankSpec& a = scene.tank;
+  const coupling::TankSpec& b = structs.tank;
   EXPECT_EQ(a.width_m, b.width_m);
   EXPECT_EQ(a.height_m, b.height_m);
   EXPECT_EQ(a.cells_x, b.cells_x);

@@ -4,16 +4,30 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace jellysim::io {
 
+class RunManifest;
+
 class OutputDir {
  public:
   /// Creates the directory (and parents) if needed; throws RunError when that fails.
   explicit OutputDir(std::filesystem::path dir);
+
+  /// The results directory of a command (`--out`): it must be new, empty, or hold only an earlier
+  /// run's outputs (listed in its manifest.txt, plus temporaries a killed run left). Those are
+  /// removed first, so the directory never mixes two runs; anything else makes it an InputError
+  /// (exit 2) and nothing is touched. Every file this run writes, here or in subdirectory()s, is
+  /// listed in manifest.txt as it is written (sorted when the run ends: finish_manifest()).
+  static OutputDir for_run(std::filesystem::path dir, std::string_view command);
+  /// The directory `name` inside this one, created if needed; its files join this run's manifest.
+  OutputDir subdirectory(std::string_view name) const;
+  /// Rewrites manifest.txt in sorted order (the order files were written in may vary with threads).
+  void finish_manifest() const;
 
   const std::filesystem::path& path() const { return dir_; }
   std::filesystem::path file(std::string_view name) const { return dir_ / name; }
@@ -31,7 +45,12 @@ class OutputDir {
 
  private:
   std::filesystem::path dir_;
+  std::shared_ptr<RunManifest> manifest_;  ///< null for a plain directory
+  std::string prefix_;                     ///< this directory relative to the manifest's ("" or "frames/")
 };
+
+/// The manifest's file name in a run's results directory.
+inline constexpr std::string_view kManifestName = "manifest.txt";
 
 /// Writes `name` atomically through a writer that needs a path (image and VTK libraries):
 /// writer(temporary path), then the temporary is renamed into place.

@@ -75,12 +75,29 @@ struct JellyfishLayout {
 
 class Jellyfish {
  public:
+  /// Builds the slice in a body of its own.
   explicit Jellyfish(const JellyfishSpec& spec);
+  Jellyfish(const Jellyfish&) = delete;  // body() may point into a world's body
+  Jellyfish& operator=(const Jellyfish&) = delete;
+
+  /// Moves the markers and springs into `shared` (a world's body holding several bodies' markers,
+  /// which must outlive this jellyfish): from then on the jellyfish reads and actuates them there,
+  /// and layout() indexes `shared`. There is one copy of the state; nothing is copied back.
+  void move_into(elastic::Body& shared);
 
   const JellyfishSpec& spec() const { return spec_; }
+  /// Indices into body() of the parts of the slice.
   const JellyfishLayout& layout() const { return layout_; }
-  elastic::Body& body() { return body_; }
-  const elastic::Body& body() const { return body_; }
+  /// The body the markers live in: the jellyfish's own, or the shared one it was moved into.
+  elastic::Body& body() { return *body_; }
+  const elastic::Body& body() const { return *body_; }
+  /// The jellyfish's points, linear and angular springs are these index ranges of body().
+  std::size_t first_point() const { return first_point_; }
+  std::size_t point_count() const { return point_count_; }
+  std::size_t first_linear_spring() const { return first_linear_; }
+  std::size_t linear_spring_count() const { return base_stiffness_.size(); }
+  std::size_t first_angular_spring() const { return first_angular_; }
+  std::size_t angular_spring_count() const { return base_joint_stiffness_.size(); }
 
   /// Sets the muscle rest lengths for time t (eq. 7.5 with each spring's profile and delay, or the
   /// eq. 7.2 controller).
@@ -111,7 +128,10 @@ class Jellyfish {
  private:
   JellyfishSpec spec_;
   JellyfishLayout layout_;
-  elastic::Body body_;
+  elastic::Body own_body_;
+  elastic::Body* body_ = &own_body_;
+  std::size_t first_point_ = 0, point_count_ = 0;
+  std::size_t first_linear_ = 0, first_angular_ = 0;
   /// Steering (beyond the thesis): chooses the bias once per cycle and bends the active side.
   void steer(double t);
 

@@ -23,11 +23,15 @@ struct PipelineSettings {
   geometry::GeometrySettings geometry;
   int width_px = 640;
   int height_px = 480;
-  double fps = 30.0;                  ///< video frame rate (normally 1 / the recorded frame interval)
+  double fps = 30.0;                  ///< video frame rate: 1 / the recorded frame interval (real time)
   double camera_distance = 2.6;       ///< camera distance in first-frame mesh extents
   double camera_elevation_deg = 12.0; ///< above the horizontal
   double camera_azimuth_deg = 25.0;   ///< around the axis, from the slice normal (+z)
-  double camera_follow = 0.25;        ///< per frame, the fraction of the way the target moves to the jellyfish (1: rigid)
+  /// "fixed": one camera for the whole animation, framing the path the jellyfish took (computed
+  /// after simulating), so the swimmer travels across the picture; "follow": the camera follows the
+  /// bell (it then stays near the middle of every frame).
+  std::string camera = "fixed";
+  double camera_follow = 0.25;        ///< "follow": per frame, the fraction of the way the target moves to the jellyfish (1: rigid)
   double fov_y_deg = 40.0;
   /// The scene's obstacles are drawn as prisms this long across the slice plane (m); the 2D
   /// simulation treats them as infinitely long (geometry/obstacle_mesh.hpp).
@@ -58,6 +62,9 @@ struct AnimationOutputs {
   std::string renderer;                        ///< GL_RENDERER string
   bool viewer_has_script = false;              ///< the viewer bundle was found and copied
   std::vector<std::string> files;              ///< relative paths written
+  /// How far the middle of the umbrellas moved on screen from the first frame to the last, in
+  /// picture heights.
+  double bell_screen_travel = 0.0;
   /// Key figures for summary.json.
   nlohmann::ordered_json figures() const;
 };

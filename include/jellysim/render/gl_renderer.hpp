@@ -23,6 +23,10 @@ struct Camera {
 /// A camera at `distance_m` from `target`, looking along −`from` (a direction, need not be unit).
 Camera camera_looking_at(geometry::Vec3 target, geometry::Vec3 from, double distance_m, double fov_y_deg);
 
+/// Where `p` lands in the picture of `camera`: x and y in units
+/// of the picture's height, from its centre (y up); the picture spans y in [−0.5, 0.5].
+std::array<double, 2> screen_position(const Camera& camera, geometry::Vec3 p);
+
 struct DirectionalLight {
   geometry::Vec3 direction{0.3, 1.0, 0.5};  ///< toward the light
   std::array<double, 3> colour{1.0, 1.0, 1.0};

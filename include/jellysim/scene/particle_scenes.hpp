@@ -1,9 +1,12 @@
 #pragma once
 // The elastic-bar and particle-fluid scenes (thesis §8.1.1–8.1.2: swinging-bar, bar-hits-wall,
 // bar-hits-particle, sph-stream, mosquito-larva, integrator-cost): the rules of the sections they
-// share and the readers that build their settings. The rules (type, unit, allowed range, meaning)
+// share and of each one's own fields, and the readers that build their settings. The rules (type, unit, allowed range, meaning)
 // are one table; the default values are each scene's own, in its definition file (`jellysim scenes
 // NAME`), because the scenes differ (the larva's step is not the bar's).
+#include <string>
+#include <vector>
+
 #include "jellysim/config/config.hpp"
 #include "jellysim/elastic/bar.hpp"
 #include "jellysim/scene/parameters.hpp"
@@ -14,7 +17,8 @@
 
 namespace jellysim::scene {
 
-/// duration, [time], [output] max_speed, [bar], [collision], [run], [box], [fluid], [larva].
+/// duration, [time], [output], [bar], [collision], [run], [box], [fluid], [larva], and the fields of
+/// one experiment alone: [wall], [particle], [emitter], [study] (integrator-cost).
 const ParameterTable& particle_scene_rules();
 
 /// duration and [time] integrator, dt, adaptive, atol, rtol, frame_interval; dt <= duration.
@@ -30,12 +34,50 @@ sph::SphParameters read_fluid_parameters(const io::Config& c);
 /// [larva] (without gravity, which build_larva_scene applies).
 sph::LarvaSpec read_larva(const io::Config& c);
 
+/// [box] min and max; max above and right of min.
+struct Box {
+  Vec2 min, max;
+};
+Box read_box(const io::Config& c);
+
+/// The frame strip of [output]: strip_frames, and strip_window, strip_start and velocity_scale
+/// where the scene has them (0 otherwise).
+struct StripOutput {
+  int frames = 12;
+  double window_s = 0.0;          ///< bar collisions: time around the first contact
+  double start_s = 0.0;           ///< mosquito larva: first frame shown
+  double velocity_scale_s = 0.0;  ///< mosquito larva: drawn velocity vectors' length per m/s
+};
+StripOutput read_strip_output(const io::Config& c);
+
+/// bar-hits-wall: wall.gap.
+double read_wall_gap(const io::Config& c);
+
+/// bar-hits-particle: the point mass of [particle], its position made absolute (from bar.pivot).
+struct PointParticle {
+  Vec2 position, velocity, gravity;
+  double mass_kg = 1.0;
+};
+PointParticle read_point_particle(const io::Config& c);
+
+/// sph-stream: [emitter], placed from the box's top-left corner; it must lie inside the box.
+sph::Emitter read_emitter(const io::Config& c, const Box& box);
+
+/// integrator-cost: [study] gas_constants, integrators, error_controls.
+struct CostStudy {
+  std::vector<double> gas_constants;
+  std::vector<std::string> integrators, error_controls;
+};
+CostStudy read_cost_study(const io::Config& c);
+
 /// The mosquito-larva scene ([box], [fluid], [larva], [collision], run.threads) with the fluid's
-/// gas constant `gas_constant`; also reports the particle-mass search. Throws InputError.
+/// gas constant `gas_constant` (the first form: fluid.gas_constant); also reports the
+/// particle-mass search. Throws InputError.
 struct LarvaScene {
   sph::Scene scene;
   sph::MassSearch mass;
 };
+LarvaScene build_larva_scene(const io::Config& c);
 LarvaScene build_larva_scene(const io::Config& c, double gas_constant);
 
 }  // namespace jellysim::scene

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "jellysim/config/config.hpp"
-#include "jellysim/coupling/oval_membrane.hpp"
-#include "jellysim/fluid/experiments_cavity.hpp"
-#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/studies/oval_membrane.hpp"
+#include "jellysim/studies/driven_cavity.hpp"
+#include "jellysim/studies/taylor_green.hpp"
 #include "jellysim/scene/parameters.hpp"
 
 namespace jellysim::scene {
@@ -21,19 +21,19 @@ const ParameterTable& taylor_green_scene();
 const ParameterTable& solver_cost_scene();
 
 struct CavityScene {
-  fluid::DrivenCavitySettings cavity;
+  studies::DrivenCavitySettings cavity;
   bool figure_enabled = true;
-  fluid::CavityFigureSettings figure;
+  studies::CavityFigureSettings figure;
 };
 CavityScene read_cavity_scene(const io::Config& c);
 
 struct MembraneScene {
-  coupling::OvalMembraneSettings membrane;
+  studies::OvalMembraneSettings membrane;
   std::vector<std::int64_t> refinement_cells;  ///< the same test on these grids
 };
 MembraneScene read_membrane_scene(const io::Config& c);
-fluid::TaylorGreenSettings read_taylor_green(const io::Config& c);
-fluid::SolverCostSettings read_solver_cost(const io::Config& c);
+studies::TaylorGreenSettings read_taylor_green(const io::Config& c);
+studies::SolverCostSettings read_solver_cost(const io::Config& c);
 
 /// The table whose generated text is the built-in definition `path` (e.g. "scenes/jellyfish.toml"),
 /// or nullptr when that definition is a plain file.

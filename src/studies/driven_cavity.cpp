@@ -1,4 +1,4 @@
-#include "jellysim/fluid/experiments_cavity.hpp"
+#include "jellysim/studies/driven_cavity.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,25 +9,25 @@
 #include "jellysim/fluid/tracers.hpp"
 #include "jellysim/sim/frame_clock.hpp"
 
-namespace jellysim::fluid {
+namespace jellysim::studies {
 namespace {
 
-FluidSettings cavity_fluid_settings(const DrivenCavitySettings& s) {
-  FluidSettings f;
+fluid::FluidSettings cavity_fluid_settings(const DrivenCavitySettings& s) {
+  fluid::FluidSettings f;
   f.viscosity_m2_per_s = s.lid_speed_m_per_s * s.size_m / s.reynolds;
   f.density_kg_per_m3 = 1.0;
-  f.boundaries = Boundaries::lid_driven_cavity(s.lid_speed_m_per_s);
+  f.boundaries = fluid::Boundaries::lid_driven_cavity(s.lid_speed_m_per_s);
   f.pressure_solver = s.pressure_solver;
   f.pressure.relative_tolerance = s.pressure_tolerance;
   f.pressure.max_iterations = s.pressure_solver == "sor" ? 100000 : 200;
   f.safety_factor = s.safety_factor;
   f.donor_cell_blend = s.donor_cell_blend;
-  f.time_step_policy = TimeStepPolicy::reduce;
+  f.time_step_policy = fluid::TimeStepPolicy::reduce;
   f.project_before_advection = s.project_before_advection;
   return f;
 }
 
-double max_change(const Velocity& a, const Velocity& b) {
+double max_change(const fluid::Velocity& a, const fluid::Velocity& b) {
   double m = 0.0;
   for (std::size_t k = 0; k < a.u.raw().size(); ++k) m = std::max(m, std::abs(a.u.raw()[k] - b.u.raw()[k]));
   for (std::size_t k = 0; k < a.v.raw().size(); ++k) m = std::max(m, std::abs(a.v.raw()[k] - b.v.raw()[k]));
@@ -36,9 +36,9 @@ double max_change(const Velocity& a, const Velocity& b) {
 
 }  // namespace
 
-CentrelineProfile vertical_centreline_u(const FlowState& s, double x_m) {
+CentrelineProfile vertical_centreline_u(const fluid::FlowState& s, double x_m) {
   CentrelineProfile p;
-  const MacGrid& g = s.grid;
+  const fluid::MacGrid& g = s.grid;
   auto add = [&](double y) {
     p.position_m.push_back(y);
     p.velocity_m_per_s.push_back(s.velocity.u.sample({x_m, y}));
@@ -49,9 +49,9 @@ CentrelineProfile vertical_centreline_u(const FlowState& s, double x_m) {
   return p;
 }
 
-CentrelineProfile horizontal_centreline_v(const FlowState& s, double y_m) {
+CentrelineProfile horizontal_centreline_v(const fluid::FlowState& s, double y_m) {
   CentrelineProfile p;
-  const MacGrid& g = s.grid;
+  const fluid::MacGrid& g = s.grid;
   auto add = [&](double x) {
     p.position_m.push_back(x);
     p.velocity_m_per_s.push_back(s.velocity.v.sample({x, y_m}));
@@ -62,14 +62,14 @@ CentrelineProfile horizontal_centreline_v(const FlowState& s, double y_m) {
   return p;
 }
 
-GhiaComparison compare_with_ghia_re100(const FlowState& s) {
+GhiaComparison compare_with_ghia_re100(const fluid::FlowState& s) {
   GhiaComparison c;
-  for (const ProfilePoint& r : kGhiaRe100CentrelineU) {
+  for (const fluid::ProfilePoint& r : fluid::kGhiaRe100CentrelineU) {
     const double e = s.velocity.u.sample({0.5, r.position}) - r.velocity;
     c.u_error.push_back(e);
     c.max_abs_u_error = std::max(c.max_abs_u_error, std::abs(e));
   }
-  for (const ProfilePoint& r : kGhiaRe100CentrelineV) {
+  for (const fluid::ProfilePoint& r : fluid::kGhiaRe100CentrelineV) {
     const double e = s.velocity.v.sample({r.position, 0.5}) - r.velocity;
     c.v_error.push_back(e);
     c.max_abs_v_error = std::max(c.max_abs_v_error, std::abs(e));
@@ -79,15 +79,15 @@ GhiaComparison compare_with_ghia_re100(const FlowState& s) {
 
 DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  const MacGrid grid(settings.cells, settings.cells, settings.size_m, settings.size_m);
-  auto solver = make_fluid_solver(settings.solver, grid, cavity_fluid_settings(settings));
+  const fluid::MacGrid grid(settings.cells, settings.cells, settings.size_m, settings.size_m);
+  auto solver = fluid::make_fluid_solver(settings.solver, grid, cavity_fluid_settings(settings));
   DrivenCavityResult result;
   result.viscosity_m2_per_s = solver->settings().viscosity_m2_per_s;
   const double U = settings.lid_speed_m_per_s;
   const double L = settings.size_m;
-  Velocity previous = solver->state().velocity;
+  fluid::Velocity previous = solver->state().velocity;
   const int n = settings.tracers_per_side;
-  Tracers tracers = n > 0 ? Tracers::lattice({0.05 * L, 0.05 * L}, {0.95 * L, 0.95 * L}, n, n) : Tracers{};
+  fluid::Tracers tracers = n > 0 ? fluid::Tracers::lattice({0.05 * L, 0.05 * L}, {0.95 * L, 0.95 * L}, n, n) : fluid::Tracers{};
   const bool frames = settings.on_frame && settings.frame_interval_s > 0.0;
   // Frames (when asked for) on the shared clock; the run stops at max_time_s (exactly: no end
   // tolerance, a last sliver step is taken) or at a steady state.
@@ -109,7 +109,7 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
     // Land on the next frame time (not capped: a frame just past the end is landed on too).
     const double frame_time = clock.scheduled_frame_time();
     if (frames && solver->time_s() + dt >= frame_time - 1e-12) dt = frame_time - solver->time_s();
-    const StepReport report = solver->step(dt);
+    const fluid::StepReport report = solver->step(dt);
     tracers.advect(solver->state().velocity, solver->settings().boundaries, dt);
     result.steps += report.substeps;
     if (!report.message.empty() && result.messages.size() < 3) result.messages.push_back(report.message);
@@ -122,7 +122,7 @@ DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings) {
   result.simulated_time_s = solver->time_s();
   result.final_state = solver->state();
   result.final_tracers_m = tracers.positions();
-  result.max_divergence_per_s = max_divergence(result.final_state.velocity);
+  result.max_divergence_per_s = fluid::max_divergence(result.final_state.velocity);
   result.centreline_u = vertical_centreline_u(result.final_state, 0.5 * L);
   result.centreline_v = horizontal_centreline_v(result.final_state, 0.5 * L);
   if (std::abs(settings.reynolds - 100.0) < 1e-9 && L == 1.0 && U == 1.0)
@@ -148,4 +148,4 @@ std::vector<CavityFigurePanel> run_cavity_figure_8_7(const CavityFigureSettings&
   return panels;
 }
 
-}  // namespace jellysim::fluid
+}  // namespace jellysim::studies

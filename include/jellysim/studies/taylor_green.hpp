@@ -6,12 +6,12 @@
 
 #include "jellysim/fluid/reference_data.hpp"
 
-namespace jellysim::fluid {
+namespace jellysim::studies {
 
 struct TaylorGreenSettings {
   std::vector<std::string> solvers{"eulerian", "semi-lagrangian"};
   std::vector<int> grids{16, 32, 64, 128};  ///< cells per side
-  TaylorGreen flow{};                       ///< L = 2π, U = 1, ν = 0.1
+  fluid::TaylorGreen flow{};                       ///< L = 2π, U = 1, ν = 0.1
   double end_time_s = 1.0;
   double safety_factor = 0.5;  ///< Eulerian Δt = τ·limit(eqs. 4.8–4.9), fitted to end exactly
   /// Semi-Lagrangian Δt = courant·Δx/U (it has no stability limit; Δt ∝ Δx keeps the ratio).
@@ -55,7 +55,7 @@ struct SolverCostSettings {
   std::vector<std::string> solvers{"eulerian", "semi-lagrangian"};
   std::vector<std::string> pressure_solvers{"sor", "multigrid"};
   int steps = 5;                     ///< steps timed per configuration (after one warm-up step)
-  TaylorGreen flow{6.283185307179586, 1.0, 0.01};
+  fluid::TaylorGreen flow{6.283185307179586, 1.0, 0.01};
   double pressure_tolerance = 1e-6;  ///< relative max-norm residual
   double safety_factor = 0.5;        ///< Eulerian Δt = τ·limit
   double semi_lagrangian_courant = 1.0;
@@ -80,4 +80,4 @@ std::vector<SolverCostRow> run_solver_cost(const SolverCostSettings& settings);
 /// ω = 2 / (1 + sin(π / max(nx, ny))), the optimal SOR relaxation for the five-point Laplacian.
 double optimal_sor_omega(int nx, int ny);
 
-}  // namespace jellysim::fluid
+}  // namespace jellysim::studies

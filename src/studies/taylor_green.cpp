@@ -1,4 +1,4 @@
-#include "jellysim/fluid/experiments_taylor_green.hpp"
+#include "jellysim/studies/taylor_green.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,24 +8,24 @@
 
 #include "jellysim/fluid/fluid_solver.hpp"
 
-namespace jellysim::fluid {
+namespace jellysim::studies {
 namespace {
 
-MacGrid periodic_square(const TaylorGreen& flow, int cells) {
-  return MacGrid(cells, cells, flow.length_m, flow.length_m);
+fluid::MacGrid periodic_square(const fluid::TaylorGreen& flow, int cells) {
+  return fluid::MacGrid(cells, cells, flow.length_m, flow.length_m);
 }
 
-FluidSettings taylor_green_settings(const TaylorGreen& flow, const std::string& pressure_solver,
+fluid::FluidSettings taylor_green_settings(const fluid::TaylorGreen& flow, const std::string& pressure_solver,
                                     double tolerance, double safety) {
-  FluidSettings f;
+  fluid::FluidSettings f;
   f.viscosity_m2_per_s = flow.viscosity_m2_per_s;
   f.density_kg_per_m3 = 1.0;
-  f.boundaries = Boundaries::all(BoundaryType::periodic);
+  f.boundaries = fluid::Boundaries::all(fluid::BoundaryType::periodic);
   f.pressure_solver = pressure_solver;
   f.pressure.relative_tolerance = tolerance;
   f.pressure.max_iterations = pressure_solver == "sor" ? 200000 : 200;
   f.safety_factor = safety;
-  f.time_step_policy = TimeStepPolicy::refuse;
+  f.time_step_policy = fluid::TimeStepPolicy::refuse;
   return f;
 }
 
@@ -33,8 +33,8 @@ struct ErrorNorms {
   double l2, max;
 };
 
-ErrorNorms velocity_error(const Velocity& vel, const TaylorGreen& flow, double t) {
-  const MacGrid& g = vel.u.grid();
+ErrorNorms velocity_error(const fluid::Velocity& vel, const fluid::TaylorGreen& flow, double t) {
+  const fluid::MacGrid& g = vel.u.grid();
   double sum = 0.0, m = 0.0;
   int n = 0;
   for (int j = 0; j < g.ny; ++j)
@@ -48,8 +48,8 @@ ErrorNorms velocity_error(const Velocity& vel, const TaylorGreen& flow, double t
   return {std::sqrt(sum / n), m};
 }
 
-double step_size(const FluidSolver& solver, const std::string& name, double courant, const MacGrid& g,
-                 const TaylorGreen& flow) {
+double step_size(const fluid::FluidSolver& solver, const std::string& name, double courant, const fluid::MacGrid& g,
+                 const fluid::TaylorGreen& flow) {
   return name == "eulerian" ? solver.stable_time_step() : courant * g.dx() / flow.speed_m_per_s;
 }
 
@@ -61,8 +61,8 @@ double optimal_sor_omega(int nx, int ny) {
 
 TaylorGreenRun run_taylor_green_once(const std::string& solver_name, int cells, const TaylorGreenSettings& s) {
   const auto start = std::chrono::steady_clock::now();
-  const MacGrid g = periodic_square(s.flow, cells);
-  auto solver = make_fluid_solver(solver_name, g,
+  const fluid::MacGrid g = periodic_square(s.flow, cells);
+  auto solver = fluid::make_fluid_solver(solver_name, g,
                                   taylor_green_settings(s.flow, s.pressure_solver, s.pressure_tolerance, s.safety_factor));
   solver->state().velocity = s.flow.sample(g, 0.0);
   solver->apply_boundaries();
@@ -111,10 +111,10 @@ std::vector<SolverCostRow> run_solver_cost(const SolverCostSettings& settings) {
   for (const std::string& solver_name : settings.solvers)
     for (const std::string& pressure : settings.pressure_solvers)
       for (int cells : settings.grids) {
-        const MacGrid g = periodic_square(settings.flow, cells);
-        FluidSettings f = taylor_green_settings(settings.flow, pressure, settings.pressure_tolerance, settings.safety_factor);
+        const fluid::MacGrid g = periodic_square(settings.flow, cells);
+        fluid::FluidSettings f = taylor_green_settings(settings.flow, pressure, settings.pressure_tolerance, settings.safety_factor);
         if (settings.sor_optimal_omega) f.pressure.sor_omega = optimal_sor_omega(cells, cells);
-        auto solver = make_fluid_solver(solver_name, g, f);
+        auto solver = fluid::make_fluid_solver(solver_name, g, f);
         solver->state().velocity = settings.flow.sample(g, 0.0);
         solver->apply_boundaries();
         const double dt = step_size(*solver, solver_name, settings.semi_lagrangian_courant, g, settings.flow);
@@ -132,4 +132,4 @@ std::vector<SolverCostRow> run_solver_cost(const SolverCostSettings& settings) {
   return rows;
 }
 
-}  // namespace jellysim::fluid
+}  // namespace jellysim::studies

@@ -1,11 +1,11 @@
-#include "jellysim/coupling/oval_membrane.hpp"
+#include "jellysim/studies/oval_membrane.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 
-namespace jellysim::coupling {
+namespace jellysim::studies {
 
 namespace {
 
@@ -61,7 +61,7 @@ MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
   fs.safety_factor = 1.0;
   auto fluid = fluid::make_fluid_solver(s.solver, grid, fs);
   elastic::Body body = make_oval_membrane(s);
-  ImmersedBoundary ib(*fluid, body, s.coupling);
+  coupling::ImmersedBoundary ib(*fluid, body, s.coupling);
   MembraneRun run;
   auto record = [&]() {
     MembraneFrame f{ib.time_s(), polygon_area(body.points.position), ring_aspect_ratio(body.points.position),
@@ -70,12 +70,12 @@ MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
     run.frames.push_back(std::move(f));
   };
   record();
-  const StabilityLimits limits{};
+  const coupling::StabilityLimits limits{};
   const long total_steps = std::lround(s.duration_s / s.dt_s);
   const long steps_per_frame = std::max(1L, std::lround(s.frame_interval_s / s.dt_s));
   for (long n = 1; n <= total_steps; ++n) {
     ib.step(s.dt_s);
-    if (std::string problem = check_stability(fluid->state(), body, limits); !problem.empty()) {
+    if (std::string problem = coupling::check_stability(fluid->state(), body, limits); !problem.empty()) {
       run.failure = problem + " at t = " + std::to_string(ib.time_s()) + " s (step " + std::to_string(n) + ")";
       break;
     }
@@ -86,4 +86,4 @@ MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
   return run;
 }
 
-}  // namespace jellysim::coupling
+}  // namespace jellysim::studies

@@ -10,7 +10,7 @@
 #include "jellysim/fluid/grid.hpp"
 #include "jellysim/fluid/reference_data.hpp"
 
-namespace jellysim::fluid {
+namespace jellysim::studies {
 
 struct DrivenCavitySettings {
   std::string solver = "eulerian";         ///< "eulerian" or "semi-lagrangian"
@@ -34,7 +34,7 @@ struct DrivenCavitySettings {
   /// Output frames: called at t = 0, every frame_interval_s (steps are shortened to land on those
   /// times) and at the end, with the flow and the tracer positions. 0 or no callback: no frames.
   double frame_interval_s = 0.0;
-  std::function<void(double t_s, const FlowState& state, const std::vector<Vec2>& tracers_m)> on_frame;
+  std::function<void(double t_s, const fluid::FlowState& state, const std::vector<Vec2>& tracers_m)> on_frame;
 };
 
 /// A velocity component sampled along a line: positions (m) and values (m/s).
@@ -45,8 +45,8 @@ struct CentrelineProfile {
 
 /// Differences to Ghia et al. (1982) at their tabulated points (Re = 100 only).
 struct GhiaComparison {
-  std::vector<double> u_error;  ///< computed − reference at kGhiaRe100CentrelineU points
-  std::vector<double> v_error;  ///< computed − reference at kGhiaRe100CentrelineV points
+  std::vector<double> u_error;  ///< computed − reference at fluid::kGhiaRe100CentrelineU points
+  std::vector<double> v_error;  ///< computed − reference at fluid::kGhiaRe100CentrelineV points
   double max_abs_u_error = 0.0;
   double max_abs_v_error = 0.0;
 };
@@ -63,16 +63,16 @@ struct DrivenCavityResult {
   double max_divergence_per_s = 0.0;
   double wall_time_s = 0.0;
   std::vector<std::string> messages;  ///< e.g. Δt reductions (first few)
-  FlowState final_state;
+  fluid::FlowState final_state;
   std::vector<Vec2> final_tracers_m;
 };
 
 DrivenCavityResult run_driven_cavity(const DrivenCavitySettings& settings);
 
 /// Samples u along x = x0 (rows of cell centres plus both walls) and v along y = y0.
-CentrelineProfile vertical_centreline_u(const FlowState& s, double x_m);
-CentrelineProfile horizontal_centreline_v(const FlowState& s, double y_m);
-GhiaComparison compare_with_ghia_re100(const FlowState& s);
+CentrelineProfile vertical_centreline_u(const fluid::FlowState& s, double x_m);
+CentrelineProfile horizontal_centreline_v(const fluid::FlowState& s, double y_m);
+GhiaComparison compare_with_ghia_re100(const fluid::FlowState& s);
 
 /// Thesis Figure 8.7: both solvers and several viscosities on a 30 × 30 unit cavity with Δt = 1/30.
 struct CavityFigureSettings {
@@ -93,4 +93,4 @@ struct CavityFigurePanel {
 /// frame step but splits it into stable sub-steps where eqs. 4.8–4.9 demand (see messages).
 std::vector<CavityFigurePanel> run_cavity_figure_8_7(const CavityFigureSettings& settings);
 
-}  // namespace jellysim::fluid
+}  // namespace jellysim::studies

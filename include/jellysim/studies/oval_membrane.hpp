@@ -8,7 +8,7 @@
 
 #include "jellysim/coupling/immersed_boundary.hpp"
 
-namespace jellysim::coupling {
+namespace jellysim::studies {
 
 struct OvalMembraneSettings {
   std::string solver = "eulerian";  ///< fluid solver
@@ -23,7 +23,7 @@ struct OvalMembraneSettings {
   double dt_s = 0.002;
   double duration_s = 2.0;
   double frame_interval_s = 0.05;
-  CouplingSettings coupling{};      ///< its max_time_step_s is ignored: dt_s is used
+  coupling::CouplingSettings coupling{};      ///< its max_time_step_s is ignored: dt_s is used
   std::string pressure_solver = "multigrid";
 };
 
@@ -51,4 +51,4 @@ double ring_aspect_ratio(const std::vector<Vec2>& ring);
 MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
                               const std::function<void(const MembraneFrame&)>& on_frame = {});
 
-}  // namespace jellysim::coupling
+}  // namespace jellysim::studies

@@ -3,9 +3,10 @@
 
 #include <cmath>
 
-#include "jellysim/coupling/oval_membrane.hpp"
+#include "jellysim/studies/oval_membrane.hpp"
 
-namespace jellysim::coupling {
+namespace jellysim::studies {
+using coupling::Scheme;
 namespace {
 
 OvalMembraneSettings thesis_settings(const std::string& solver) {
@@ -39,4 +40,4 @@ TEST(OvalMembrane, SemiImplicitCouplingIsStableAtTenTimesTheStep) {
 }
 
 }  // namespace
-}  // namespace jellysim::coupling
+}  // namespace jellysim::studies

@@ -1,0 +1,114 @@
+// A run's results directory (io::OutputDir::for_run): a manifest of what the run wrote, an earlier
+// run's outputs replaced completely, other files never mixed in.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
+
+namespace jellysim::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("jellysim_output_dir_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void touch(const fs::path& p) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << "x";
+}
+
+TEST(OutputDir, ListsEveryFileOfTheRunInItsManifestSorted) {
+  const fs::path dir = fresh("manifest");
+  const OutputDir out = OutputDir::for_run(dir, "test");
+  out.write_text("b.csv", "1\n");
+  out.subdirectory("frames").write_text("f_0001.png", "p");
+  out.subdirectory("frames").write_text("f_0000.png", "p");
+  out.write_text("a.json", "{}");
+  out.write_text("b.csv", "2\n");  // rewritten: listed once
+  // While the run goes on the manifest grows in writing order (a killed run still leaves it right).
+  EXPECT_EQ(slurp(dir / kManifestName).substr(slurp(dir / kManifestName).find('\n') + 1),
+            "b.csv\nframes/f_0001.png\nframes/f_0000.png\na.json\n");
+  out.finish_manifest();
+  const std::string text = slurp(dir / kManifestName);
+  EXPECT_EQ(text, "# jellysim test: the files of this run; a later run into this directory removes them first\n"
+                  "a.json\nb.csv\nframes/f_0000.png\nframes/f_0001.png\n");
+  fs::remove_all(dir);
+}
+
+TEST(OutputDir, ALaterRunReplacesTheEarlierRunsOutputsCompletely) {
+  const fs::path dir = fresh("replace");
+  {
+    const OutputDir first = OutputDir::for_run(dir, "test");
+    for (int k = 0; k < 5; ++k) first.subdirectory("frames").write_text("f_" + std::to_string(k) + ".png", "p");
+    first.subdirectory("meshes").write_text("m.obj", "o");
+    first.write_text("summary.json", "{\"frames\": 5}");
+    first.finish_manifest();
+  }
+  touch(dir / "frames" / "f_9.png.tmp-4242");  // a temporary a killed run left
+  const OutputDir second = OutputDir::for_run(dir, "test");
+  EXPECT_FALSE(fs::exists(dir / "frames"));  // emptied, so removed
+  EXPECT_FALSE(fs::exists(dir / "meshes"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  second.subdirectory("frames").write_text("f_0.png", "p");
+  second.write_text("summary.json", "{\"frames\": 1}");
+  second.finish_manifest();
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 3);  // manifest, summary, one frame
+  fs::remove_all(dir);
+}
+
+TEST(OutputDir, RefusesADirectoryWithFilesItDidNotWriteAndTouchesNothing) {
+  const fs::path dir = fresh("foreign");
+  {
+    const OutputDir first = OutputDir::for_run(dir, "test");
+    first.write_text("metrics.csv", "t\n");
+    first.finish_manifest();
+  }
+  touch(dir / "notes" / "mine.txt");
+  try {
+    OutputDir::for_run(dir, "test");
+    ADD_FAILURE() << "a directory with someone else's file was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("notes/mine.txt"), std::string::npos) << what;
+    EXPECT_NE(what.find("new or empty directory"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(fs::exists(dir / "metrics.csv"));  // nothing removed
+  EXPECT_TRUE(fs::exists(dir / "notes" / "mine.txt"));
+
+  const fs::path plain = fresh("plain");
+  touch(plain / "thesis.pdf");  // not empty and no manifest: not ours
+  EXPECT_THROW(OutputDir::for_run(plain, "test"), InputError);
+  EXPECT_TRUE(fs::exists(plain / "thesis.pdf"));
+  touch(fresh("file") );
+  EXPECT_THROW(OutputDir::for_run(fs::temp_directory_path() / "jellysim_output_dir_file", "test"), InputError);
+  fs::remove_all(dir);
+  fs::remove_all(plain);
+  fs::remove(fs::temp_directory_path() / "jellysim_output_dir_file");
+}
+
+TEST(OutputDir, AcceptsANewOrEmptyDirectory) {
+  const fs::path dir = fresh("empty");
+  fs::create_directories(dir);
+  EXPECT_NO_THROW(OutputDir::for_run(dir, "test"));
+  EXPECT_NO_THROW(OutputDir::for_run(fresh("new") / "nested", "test"));
+  fs::remove_all(dir);
+  fs::remove_all(fresh("new"));
+}
+
+}  // namespace
+}  // namespace jellysim::io
