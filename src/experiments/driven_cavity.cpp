@@ -44,8 +44,8 @@ class VtkFrameWriter {
     const std::string field = "field_" + id + ".vti", points = "tracers_" + id + ".vtp";
     write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, state); });
     write_via_temporary(frames_, points, [&](const auto& p) { io::write_points_vtp(p, tracers); });
-    entries_.push_back({t, "frames/" + field, 0});
-    entries_.push_back({t, "frames/" + points, 1});
+    entries_.push_back({t, "frames/" + field, 0, "field"});
+    entries_.push_back({t, "frames/" + points, 1, "tracers"});
   }
   /// The ParaView time series of every frame written so far.
   void write_series() const {

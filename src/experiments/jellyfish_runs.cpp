@@ -1,3 +1,4 @@
+#include "jellysim/elastic/spring_assembly.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 
 #include <cmath>
@@ -17,6 +18,51 @@ using io::write_via_temporary;
 
 std::string frame_id(std::size_t k) { return std::to_string(1000000 + k).substr(1); }
 
+/// The tracers for ParaView: per point its `id` and the fluid's `velocity` there (m/s).
+io::VtkPolyData tracer_data(const jellyfish::SwimSimulation& sim) {
+  io::VtkPolyData d;
+  d.points_m = sim.tracers().positions();
+  io::VtkArray id{"id", 1, {}, true}, velocity{"velocity", 3, {}, false};
+  const fluid::Velocity& u = sim.flow().velocity;
+  for (std::size_t k = 0; k < d.points_m.size(); ++k) {
+    id.values.push_back(static_cast<double>(k));
+    velocity.values.insert(velocity.values.end(), {u.u.sample(d.points_m[k]), u.v.sample(d.points_m[k]), 0.0});
+  }
+  d.point_data = {std::move(id), std::move(velocity)};
+  return d;
+}
+
+/// Every marker and spring of the coupled body for ParaView. Points: `kind` (0 a marker, 1 pinned,
+/// 2 a target point on a prescribed path: elastic::PointKind), `velocity` (m/s), `force` (the
+/// springs' force on the point, N per metre of depth). Springs: `muscle` (1 for a subumbrellar
+/// muscle) and `strain` (length / rest length − 1; 0 for a zero rest length).
+io::VtkPolyData body_data(const jellyfish::SwimSimulation& sim) {
+  const elastic::Body& b = sim.body();
+  io::VtkPolyData d;
+  d.points_m = b.points.position;
+  std::vector<Vec2> force(b.points.size());
+  elastic::add_spring_forces(b, b.points.position, force);
+  io::VtkArray kind{"kind", 1, {}, true}, velocity{"velocity", 3, {}, false}, f{"force", 3, {}, false};
+  for (std::size_t p = 0; p < b.points.size(); ++p) {
+    kind.values.push_back(static_cast<double>(b.points.kind[p]));
+    velocity.values.insert(velocity.values.end(), {b.points.velocity[p].x, b.points.velocity[p].y, 0.0});
+    f.values.insert(f.values.end(), {force[p].x, force[p].y, 0.0});
+  }
+  io::VtkArray muscle{"muscle", 1, std::vector<double>(b.linear.size(), 0.0), true}, strain{"strain", 1, {}, false};
+  for (std::size_t j = 0; j < sim.jellyfish_count(); ++j)
+    for (int s : sim.jellyfish(j).layout().muscle_springs) muscle.values[static_cast<std::size_t>(s)] = 1.0;
+  for (std::size_t s = 0; s < b.linear.size(); ++s) {
+    d.lines.push_back({b.linear.i[s], b.linear.j[s]});
+    const double rest = b.linear.rest_length[s];
+    const double length = norm(b.points.position[static_cast<std::size_t>(b.linear.j[s])] -
+                               b.points.position[static_cast<std::size_t>(b.linear.i[s])]);
+    strain.values.push_back(rest > 0.0 ? length / rest - 1.0 : 0.0);
+  }
+  d.point_data = {std::move(kind), std::move(velocity), std::move(f)};
+  d.cell_data = {std::move(muscle), std::move(strain)};
+  return d;
+}
+
 /// Writes the per-frame files and keeps the .pvd entries.
 class FrameFiles {
  public:
@@ -27,14 +73,11 @@ class FrameFiles {
     if (options_.vtk) {
       const std::string field = "field_" + id + ".vti", tracers = "tracers_" + id + ".vtp", body = "body_" + id + ".vtp";
       write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, sim.flow()); });
-      write_via_temporary(frames_, tracers, [&](const auto& p) { io::write_points_vtp(p, sim.tracers().positions()); });
-      const elastic::Body& b = sim.body();
-      std::vector<std::array<int, 2>> lines;
-      for (std::size_t s = 0; s < b.linear.size(); ++s) lines.push_back({b.linear.i[s], b.linear.j[s]});
-      write_via_temporary(frames_, body, [&](const auto& p) { io::write_lines_vtp(p, b.points.position, lines); });
-      entries_.push_back({sim.time_s(), "frames/" + field, 0});
-      entries_.push_back({sim.time_s(), "frames/" + tracers, 1});
-      entries_.push_back({sim.time_s(), "frames/" + body, 2});
+      write_via_temporary(frames_, tracers, [&](const auto& p) { io::write_polydata_vtp(p, tracer_data(sim)); });
+      write_via_temporary(frames_, body, [&](const auto& p) { io::write_polydata_vtp(p, body_data(sim)); });
+      entries_.push_back({sim.time_s(), "frames/" + field, 0, "field"});
+      entries_.push_back({sim.time_s(), "frames/" + tracers, 1, "tracers"});
+      entries_.push_back({sim.time_s(), "frames/" + body, 2, "body"});
       write_via_temporary(out_, "jellyfish.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
     }
     if (options_.pictures && index % static_cast<std::size_t>(options_.picture_every) == 0) {

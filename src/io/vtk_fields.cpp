@@ -1,9 +1,13 @@
 #include "jellysim/io/vtk_fields.hpp"
 
+#include <zlib.h>
+
+#include <cstdint>
+#include <cstring>
 #include <fstream>
-#include <iomanip>
 #include <limits>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "jellysim/fluid/diagnostics.hpp"
@@ -12,18 +16,70 @@
 namespace jellysim::io {
 namespace {
 
-void write_cell_array(std::ostream& out, const char* name, const fluid::Field& f) {
-  out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
-  for (int j = 0; j < f.count_y(); ++j) {
-    out << "         ";
-    for (int i = 0; i < f.count_x(); ++i) out << ' ' << f(i, j);
-    out << '\n';
+/// Uncompressed bytes per zlib block (VTK's default).
+constexpr std::size_t kBlockBytes = 32768;
+
+/// Collects the arrays of one file: each <DataArray> element refers by offset to its bytes in the
+/// appended section, stored as VTK's compressed-data header (UInt64: block count, block size,
+/// size of a partial last block or 0, compressed size of each block) followed by the blocks.
+class AppendedArrays {
+ public:
+  /// The element for `count` values of `type` ("Float64", "Int32", "Int64") at `data`.
+  std::string element(const std::string& indent, const char* type, const std::string& name, int components,
+                      const void* data, std::size_t bytes) {
+    std::ostringstream e;
+    e << indent << "<DataArray type=\"" << type << '"';
+    if (!name.empty()) e << " Name=\"" << name << '"';
+    if (components != 1) e << " NumberOfComponents=\"" << components << '"';
+    e << " format=\"appended\" offset=\"" << blob_.size() << "\"/>\n";
+    append_compressed(static_cast<const unsigned char*>(data), bytes);
+    return e.str();
   }
-  out << "        </DataArray>\n";
+  std::string element(const std::string& indent, const VtkArray& a) {
+    if (!a.integer) return element(indent, "Float64", a.name, a.components, a.values.data(), a.values.size() * 8);
+    std::vector<std::int32_t> v(a.values.begin(), a.values.end());
+    return element(indent, "Int32", a.name, a.components, v.data(), v.size() * 4);
+  }
+  void write(std::ostream& out) const {
+    out << "  <AppendedData encoding=\"raw\">\n   _";
+    out.write(blob_.data(), static_cast<std::streamsize>(blob_.size()));
+    out << "\n  </AppendedData>\n";
+  }
+
+ private:
+  void append_compressed(const unsigned char* data, std::size_t bytes) {
+    const std::size_t blocks = (bytes + kBlockBytes - 1) / kBlockBytes;
+    std::vector<std::uint64_t> header{blocks, kBlockBytes, bytes % kBlockBytes};
+    std::string body;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t size = std::min(kBlockBytes, bytes - b * kBlockBytes);
+      uLongf packed = compressBound(static_cast<uLong>(size));
+      std::string block(packed, '\0');
+      if (compress2(reinterpret_cast<Bytef*>(block.data()), &packed, data + b * kBlockBytes, static_cast<uLong>(size),
+                    Z_BEST_SPEED) != Z_OK)
+        throw std::runtime_error("zlib could not compress a VTK array");
+      header.push_back(packed);
+      body.append(block.data(), packed);
+    }
+    blob_.append(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
+    blob_ += body;
+  }
+  std::string blob_;
+};
+
+const char* kFileAttributes = " version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+                              "compressor=\"vtkZLibDataCompressor\"";
+
+std::vector<double> cell_values(const fluid::Field& f) {
+  std::vector<double> v;
+  v.reserve(static_cast<std::size_t>(f.count_x()) * static_cast<std::size_t>(f.count_y()));
+  for (int j = 0; j < f.count_y(); ++j)
+    for (int i = 0; i < f.count_x(); ++i) v.push_back(f(i, j));
+  return v;
 }
 
 std::ofstream open_for_writing(const std::filesystem::path& path) {
-  std::ofstream out(path);
+  std::ofstream out(path, std::ios::binary);
   if (!out) throw std::runtime_error("cannot open " + path.string() + " for writing");
   return out;
 }
@@ -33,7 +89,7 @@ void check_written(std::ostream& out, const std::filesystem::path& path) {
   if (!out) throw std::runtime_error("failed writing " + path.string());
 }
 
-// Full double precision on the stream for the duration of one write.
+/// Full double precision on the stream for the duration of one write.
 class PrecisionGuard {
  public:
   explicit PrecisionGuard(std::ostream& out)
@@ -47,33 +103,43 @@ class PrecisionGuard {
   std::streamsize old_;
 };
 
+void check_sizes(const std::vector<VtkArray>& arrays, std::size_t tuples, const char* what) {
+  for (const VtkArray& a : arrays)
+    if (a.components < 1 || a.values.size() != tuples * static_cast<std::size_t>(a.components))
+      throw std::invalid_argument("VTK array '" + a.name + "' has " + std::to_string(a.values.size()) +
+                                  " values for " + std::to_string(tuples) + " " + what + " of " +
+                                  std::to_string(a.components) + " components");
+}
+
 }  // namespace
 
 void write_flow_vti(std::ostream& out, const fluid::FlowState& state) {
   const PrecisionGuard precision(out);
   const fluid::MacGrid& g = state.grid;
   const fluid::Velocity& vel = state.velocity;
+  std::vector<double> velocity;
+  velocity.reserve(3 * static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny));
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const Vec2 c = fluid::velocity_at_centre(vel, i, j);
+      velocity.insert(velocity.end(), {c.x, c.y, 0.0});
+    }
+  AppendedArrays arrays;
+  const std::string in = "        ";
+  std::string cells = arrays.element(in, {"velocity", 3, std::move(velocity), false});
+  cells += arrays.element(in, {"speed", 1, cell_values(fluid::speed_at_centres(vel)), false});
+  cells += arrays.element(in, {"vorticity", 1, cell_values(fluid::vorticity_at_centres(vel)), false});
+  cells += arrays.element(in, {"pressure", 1, cell_values(state.pressure), false});
+  cells += arrays.element(in, {"divergence", 1, cell_values(fluid::divergence(vel)), false});
   out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      << "<VTKFile type=\"ImageData\"" << kFileAttributes << ">\n"
       << "  <ImageData WholeExtent=\"0 " << g.nx << " 0 " << g.ny << " 0 0\" Origin=\"" << g.origin_m.x << ' '
       << g.origin_m.y << " 0\" Spacing=\"" << g.dx() << ' ' << g.dy() << " 1\">\n"
       << "    <Piece Extent=\"0 " << g.nx << " 0 " << g.ny << " 0 0\">\n"
       << "      <CellData Scalars=\"speed\" Vectors=\"velocity\">\n"
-      << "        <DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int j = 0; j < g.ny; ++j) {
-    out << "         ";
-    for (int i = 0; i < g.nx; ++i) {
-      const Vec2 c = fluid::velocity_at_centre(vel, i, j);
-      out << ' ' << c.x << ' ' << c.y << " 0";
-    }
-    out << '\n';
-  }
-  out << "        </DataArray>\n";
-  write_cell_array(out, "speed", fluid::speed_at_centres(vel));
-  write_cell_array(out, "vorticity", fluid::vorticity_at_centres(vel));
-  write_cell_array(out, "pressure", state.pressure);
-  write_cell_array(out, "divergence", fluid::divergence(vel));
-  out << "      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n";
+      << cells << "      </CellData>\n    </Piece>\n  </ImageData>\n";
+  arrays.write(out);
+  out << "</VTKFile>\n";
 }
 
 void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& state) {
@@ -82,61 +148,74 @@ void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& s
   check_written(out, path);
 }
 
-void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m) {
-  const PrecisionGuard precision(out);
-  const std::size_t n = points_m.size();
+void write_polydata_vtp(std::ostream& out, const VtkPolyData& d) {
+  const std::size_t n = d.points_m.size();
+  const bool lines = !d.lines.empty();
+  const std::size_t cells = lines ? d.lines.size() : n;
+  check_sizes(d.point_data, n, "points");
+  check_sizes(d.cell_data, cells, "cells");
+  for (const auto& l : d.lines)
+    for (int p : l)
+      if (p < 0 || static_cast<std::size_t>(p) >= n)
+        throw std::invalid_argument("VTK line refers to point " + std::to_string(p) + " of " + std::to_string(n));
+  AppendedArrays arrays;
+  const std::string in = "        ";
+  std::vector<double> xyz;
+  xyz.reserve(3 * n);
+  for (Vec2 p : d.points_m) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
+  const std::string points = arrays.element(in, "Float64", "", 3, xyz.data(), xyz.size() * 8);
+  std::vector<std::int64_t> connectivity, offsets;
+  if (lines) {
+    for (const auto& l : d.lines) connectivity.insert(connectivity.end(), {l[0], l[1]});
+  } else {
+    for (std::size_t k = 0; k < n; ++k) connectivity.push_back(static_cast<std::int64_t>(k));
+  }
+  const std::int64_t per_cell = lines ? 2 : 1;
+  for (std::size_t k = 1; k <= cells; ++k) offsets.push_back(per_cell * static_cast<std::int64_t>(k));
+  std::string topology = arrays.element(in, "Int64", "connectivity", 1, connectivity.data(), connectivity.size() * 8);
+  topology += arrays.element(in, "Int64", "offsets", 1, offsets.data(), offsets.size() * 8);
+  std::string point_data, cell_data;
+  for (const VtkArray& a : d.point_data) point_data += arrays.element(in, a);
+  for (const VtkArray& a : d.cell_data) cell_data += arrays.element(in, a);
+  const char* cell_kind = lines ? "Lines" : "Verts";
   out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      << "<VTKFile type=\"PolyData\"" << kFileAttributes << ">\n"
       << "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n
-      << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-      << "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Vec2& p : points_m) out << "          " << p.x << ' ' << p.y << " 0\n";
-  out << "        </DataArray>\n      </Points>\n      <Verts>\n"
-      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
-  for (std::size_t k = 0; k < n; ++k) out << ' ' << k;
-  out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
-  for (std::size_t k = 1; k <= n; ++k) out << ' ' << k;
-  out << "\n        </DataArray>\n      </Verts>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << (lines ? 0 : n) << "\" NumberOfLines=\""
+      << (lines ? cells : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+      << "      <PointData>\n" << point_data << "      </PointData>\n"
+      << "      <CellData>\n" << cell_data << "      </CellData>\n"
+      << "      <Points>\n" << points << "      </Points>\n"
+      << "      <" << cell_kind << ">\n" << topology << "      </" << cell_kind << ">\n"
+      << "    </Piece>\n  </PolyData>\n";
+  arrays.write(out);
+  out << "</VTKFile>\n";
+}
+
+void write_polydata_vtp(const std::filesystem::path& path, const VtkPolyData& data) {
+  std::ofstream out = open_for_writing(path);
+  write_polydata_vtp(out, data);
+  check_written(out, path);
 }
 
 void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m) {
-  std::ofstream out = open_for_writing(path);
-  write_points_vtp(out, points_m);
-  check_written(out, path);
-}
-
-void write_lines_vtp(std::ostream& out, const std::vector<Vec2>& points_m, const std::vector<std::array<int, 2>>& lines) {
-  const PrecisionGuard precision(out);
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-      << "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << points_m.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << lines.size()
-      << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-      << "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Vec2& p : points_m) out << "          " << p.x << ' ' << p.y << " 0\n";
-  out << "        </DataArray>\n      </Points>\n      <Lines>\n"
-      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n         ";
-  for (const auto& l : lines) out << ' ' << l[0] << ' ' << l[1];
-  out << "\n        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n         ";
-  for (std::size_t k = 1; k <= lines.size(); ++k) out << ' ' << 2 * k;
-  out << "\n        </DataArray>\n      </Lines>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
-}
-
-void write_lines_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m,
-                     const std::vector<std::array<int, 2>>& lines) {
-  std::ofstream out = open_for_writing(path);
-  write_lines_vtp(out, points_m, lines);
-  check_written(out, path);
+  VtkPolyData d;
+  d.points_m = points_m;
+  VtkArray id{"id", 1, {}, true};
+  for (std::size_t k = 0; k < points_m.size(); ++k) id.values.push_back(static_cast<double>(k));
+  d.point_data.push_back(std::move(id));
+  write_polydata_vtp(path, d);
 }
 
 void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries) {
   const PrecisionGuard precision(out);
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
-  for (const PvdEntry& e : entries)
-    out << "    <DataSet timestep=\"" << e.time_s << "\" group=\"\" part=\"" << e.part << "\" file=\"" << e.file
-        << "\"/>\n";
+  for (const PvdEntry& e : entries) {
+    out << "    <DataSet timestep=\"" << e.time_s << "\" group=\"\" part=\"" << e.part << '"';
+    if (!e.name.empty()) out << " name=\"" << e.name << '"';
+    out << " file=\"" << e.file << "\"/>\n";
+  }
   out << "  </Collection>\n</VTKFile>\n";
 }
 

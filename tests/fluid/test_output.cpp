@@ -1,15 +1,13 @@
-// VTK and PNG output of fluid fields: well-formed files with the expected sizes.
+// PNG pictures of fluid fields (the VTK files are tested in tests/io/test_vtk.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/reference_data.hpp"
 #include "jellysim/fluid/tracers.hpp"
-#include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/field_picture.hpp"
 
 namespace jellysim {
@@ -20,38 +18,6 @@ fluid::FlowState vortex_state(int n) {
   s.velocity = fluid::TaylorGreen{2.0, 1.0, 0.0}.sample(s.grid, 0.0);
   fluid::apply_velocity_boundaries(s.velocity, fluid::Boundaries::all(fluid::BoundaryType::free_slip));
   return s;
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
-
-TEST(VtkOutput, ImageDataHasOneValuePerCellForEveryArray) {
-  const fluid::FlowState s = vortex_state(6);
-  std::ostringstream out;
-  io::write_flow_vti(out, s);
-  const std::string text = out.str();
-  EXPECT_NE(text.find("WholeExtent=\"0 6 0 6 0 0\""), std::string::npos);
-  EXPECT_NE(text.find("Spacing=\"0.33333333333333331 0.33333333333333331 1\""), std::string::npos);
-  EXPECT_EQ(count(text, "<DataArray"), 5u);
-  // The speed array holds 36 numbers.
-  const std::size_t start = text.find(">", text.find("Name=\"speed\"")) + 1;
-  std::istringstream values(text.substr(start, text.find("</DataArray>", start) - start));
-  int n = 0;
-  for (double v; values >> v;) ++n;
-  EXPECT_EQ(n, 36);
-}
-
-TEST(VtkOutput, TimeSeriesListsEveryFrame) {
-  std::ostringstream out;
-  io::write_pvd(out, {{0.0, "flow_0000.vti", 0}, {0.5, "flow_0001.vti", 0}, {0.5, "tracers_0001.vtp", 1}});
-  EXPECT_EQ(count(out.str(), "<DataSet"), 3u);
-  EXPECT_NE(out.str().find("timestep=\"0.5\" group=\"\" part=\"1\" file=\"tracers_0001.vtp\""), std::string::npos);
-  std::ostringstream points;
-  io::write_points_vtp(points, {{0.1, 0.2}, {0.3, 0.4}});
-  EXPECT_NE(points.str().find("NumberOfPoints=\"2\""), std::string::npos);
 }
 
 TEST(FieldPicture, WritesAPngFile) {

@@ -1,8 +1,10 @@
 #pragma once
-// VTK output of grid-fluid fields for ParaView: one XML ImageData file (.vti, ASCII) per frame with
-// cell-centred arrays, tracer particles as XML PolyData (.vtp), and a .pvd collection that ties
-// the frames into a time series. Writers take a stream or a path; writing atomically (temp file +
-// rename) is the caller's job.
+// VTK output for ParaView: grid-fluid fields as XML ImageData (.vti, cell-centred arrays), points
+// and springs as XML PolyData (.vtp) with named point and cell data, and a .pvd collection that
+// ties the frames into a time series with named parts. Arrays are raw binary in the file's
+// appended section, zlib-compressed (vtkZLibDataCompressor, 32 KiB blocks), so a frame takes a
+// fraction of the ASCII file's space and time. Writers take a stream or a path; writing atomically
+// (temp file + rename) is the caller's job.
 #include <array>
 #include <filesystem>
 #include <iosfwd>
@@ -13,25 +15,43 @@
 
 namespace jellysim::io {
 
+/// One named data array: `components` values per point or cell, Float64, or Int32 when `integer`
+/// (kinds, flags, ids).
+struct VtkArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;  ///< tuples × components
+  bool integer = false;
+};
+
+/// Points in the slice plane (z = 0), each a vertex or joined by line segments, with data.
+struct VtkPolyData {
+  std::vector<Vec2> points_m;
+  std::vector<std::array<int, 2>> lines;  ///< empty: every point is a vertex cell
+  std::vector<VtkArray> point_data;
+  std::vector<VtkArray> cell_data;        ///< one tuple per vertex (no lines) or per line
+};
+
 /// Writes velocity (vector, m/s), speed (m/s), vorticity (1/s), pressure (Pa) and divergence (1/s)
 /// at the cell centres of `state` as VTK XML ImageData. The velocity ghosts must be filled.
 void write_flow_vti(std::ostream& out, const fluid::FlowState& state);
 void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& state);
 
-/// Writes points (z = 0) as VTK XML PolyData vertices.
-void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m);
+/// Writes the points, their cells and their data as VTK XML PolyData; throws std::invalid_argument
+/// when an array's size does not match its points or cells.
+void write_polydata_vtp(std::ostream& out, const VtkPolyData& data);
+void write_polydata_vtp(const std::filesystem::path& path, const VtkPolyData& data);
+
+/// Points (z = 0) as vertices with an `id` array (their index).
 void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m);
 
-/// Writes points (z = 0) joined by line segments (e.g. the springs of a body) as VTK XML PolyData.
-void write_lines_vtp(std::ostream& out, const std::vector<Vec2>& points_m, const std::vector<std::array<int, 2>>& lines);
-void write_lines_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m,
-                     const std::vector<std::array<int, 2>>& lines);
-
-/// One dataset of a time series: simulated time and the file name relative to the .pvd file.
+/// One dataset of a time series: simulated time, the file name relative to the .pvd file, and
+/// which part of the time step it is (e.g. 0 field, 1 tracers), named for ParaView's pipeline.
 struct PvdEntry {
   double time_s = 0.0;
   std::string file;
-  int part = 0;  ///< several files at the same time step (e.g. field and tracers)
+  int part = 0;
+  std::string name;  ///< e.g. "field", "tracers", "body"
 };
 
 /// Writes a ParaView collection (.pvd) listing the entries.

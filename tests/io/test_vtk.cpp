@@ -1,0 +1,138 @@
+// VTK output for ParaView: binary appended arrays, zlib-compressed, that decode to exactly the
+// values written; named point and cell data; named parts in the .pvd collection.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/fluid/reference_data.hpp"
+#include "jellysim/io/vtk_fields.hpp"
+
+namespace jellysim::io {
+namespace {
+
+fluid::FlowState vortex_state(int n) {
+  fluid::FlowState s(fluid::MacGrid(n, n, 2.0, 2.0));
+  s.velocity = fluid::TaylorGreen{2.0, 1.0, 0.0}.sample(s.grid, 0.0);
+  fluid::apply_velocity_boundaries(s.velocity, fluid::Boundaries::all(fluid::BoundaryType::free_slip));
+  return s;
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+  return n;
+}
+
+/// Decodes array `name` of a file as ParaView does: its offset into the appended section, VTK's
+/// compressed-data header (block count, block size, partial last block, compressed sizes), the
+/// zlib blocks. An empty name finds the first array without one (the points).
+template <class T>
+std::vector<T> read_array(const std::string& file, const std::string& name) {
+  const std::size_t element = name.empty() ? file.find("<Points>") : file.find("Name=\"" + name + "\"");
+  if (element == std::string::npos) throw std::runtime_error("no array " + name);
+  const std::size_t offset = std::stoull(file.substr(file.find("offset=\"", element) + 8));
+  const std::size_t base = file.find('_', file.find("<AppendedData encoding=\"raw\">")) + 1;
+  const char* p = file.data() + base + offset;
+  std::uint64_t header[3];
+  std::memcpy(header, p, sizeof header);
+  std::vector<std::uint64_t> packed(header[0]);
+  std::memcpy(packed.data(), p + sizeof header, 8 * header[0]);
+  const char* block = p + sizeof header + 8 * header[0];
+  std::string raw;
+  for (std::uint64_t b = 0; b < header[0]; ++b) {
+    uLongf size = b + 1 == header[0] && header[2] != 0 ? header[2] : header[1];
+    std::string out(size, '\0');
+    if (uncompress(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(block), packed[b]) != Z_OK)
+      throw std::runtime_error("bad zlib block in " + name);
+    raw.append(out.data(), size);
+    block += packed[b];
+  }
+  std::vector<T> values(raw.size() / sizeof(T));
+  std::memcpy(values.data(), raw.data(), raw.size());
+  return values;
+}
+
+TEST(VtkOutput, ImageDataArraysDecodeToTheCellValues) {
+  const fluid::FlowState s = vortex_state(6);
+  std::ostringstream out;
+  write_flow_vti(out, s);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
+  EXPECT_NE(text.find("WholeExtent=\"0 6 0 6 0 0\""), std::string::npos);
+  EXPECT_NE(text.find("Spacing=\"0.33333333333333331 0.33333333333333331 1\""), std::string::npos);
+  EXPECT_EQ(count(text, "<DataArray"), 5u);
+  const fluid::Field speed = fluid::speed_at_centres(s.velocity);
+  const std::vector<double> read = read_array<double>(text, "speed");
+  ASSERT_EQ(read.size(), 36u);
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(read[static_cast<std::size_t>(6 * j + i)], speed(i, j));
+  const std::vector<double> velocity = read_array<double>(text, "velocity");
+  ASSERT_EQ(velocity.size(), 108u);
+  const Vec2 c = fluid::velocity_at_centre(s.velocity, 2, 3);
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2)], c.x);
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 1], c.y);
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 2], 0.0);
+}
+
+TEST(VtkOutput, LargeArraysSpanSeveralCompressedBlocks) {
+  const fluid::FlowState s = vortex_state(80);  // 6400 cells x 3 x 8 bytes: 5 blocks of 32 KiB
+  std::ostringstream out;
+  write_flow_vti(out, s);
+  const std::vector<double> velocity = read_array<double>(out.str(), "velocity");
+  ASSERT_EQ(velocity.size(), 3u * 6400u);
+  const Vec2 c = fluid::velocity_at_centre(s.velocity, 79, 79);
+  EXPECT_EQ(velocity[3 * 6399], c.x);
+  EXPECT_LT(out.str().size(), 8u * 6400u * 7u);  // smaller than the raw doubles
+}
+
+TEST(VtkOutput, PolyDataCarriesNamedPointAndCellData) {
+  VtkPolyData d;
+  d.points_m = {{0.1, 0.2}, {0.3, 0.4}, {0.5, 0.7}};
+  d.lines = {{0, 1}, {1, 2}};
+  d.point_data.push_back({"kind", 1, {0, 0, 2}, true});
+  d.point_data.push_back({"velocity", 3, {1, 2, 0, 3, 4, 0, 5, 6, 0}, false});
+  d.cell_data.push_back({"muscle", 1, {0, 1}, true});
+  std::ostringstream out;
+  write_polydata_vtp(out, d);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("NumberOfPoints=\"3\" NumberOfVerts=\"0\" NumberOfLines=\"2\""), std::string::npos);
+  EXPECT_EQ(read_array<double>(text, ""), (std::vector<double>{0.1, 0.2, 0, 0.3, 0.4, 0, 0.5, 0.7, 0}));
+  EXPECT_EQ(read_array<std::int64_t>(text, "connectivity"), (std::vector<std::int64_t>{0, 1, 1, 2}));
+  EXPECT_EQ(read_array<std::int64_t>(text, "offsets"), (std::vector<std::int64_t>{2, 4}));
+  EXPECT_EQ(read_array<std::int32_t>(text, "kind"), (std::vector<std::int32_t>{0, 0, 2}));
+  EXPECT_EQ(read_array<double>(text, "velocity")[4], 4.0);
+  EXPECT_EQ(read_array<std::int32_t>(text, "muscle"), (std::vector<std::int32_t>{0, 1}));
+  d.cell_data.front().values.pop_back();
+  EXPECT_THROW(write_polydata_vtp(out, d), std::invalid_argument);  // one value short
+}
+
+TEST(VtkOutput, TimeSeriesListsEveryFrameWithNamedParts) {
+  std::ostringstream out;
+  write_pvd(out, {{0.0, "flow_0000.vti", 0, "field"}, {0.5, "flow_0001.vti", 0, "field"},
+                  {0.5, "tracers_0001.vtp", 1, "tracers"}});
+  EXPECT_EQ(count(out.str(), "<DataSet"), 3u);
+  EXPECT_NE(out.str().find("timestep=\"0.5\" group=\"\" part=\"1\" name=\"tracers\" file=\"tracers_0001.vtp\""),
+            std::string::npos);
+}
+
+TEST(VtkOutput, PointsGetTheirIndexAsId) {
+  const auto path = std::filesystem::temp_directory_path() / "jellysim_test_points.vtp";
+  write_points_vtp(path, {{0.1, 0.2}, {0.3, 0.4}});
+  std::ifstream in(path, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("NumberOfPoints=\"2\" NumberOfVerts=\"2\""), std::string::npos);
+  EXPECT_EQ(read_array<std::int32_t>(text, "id"), (std::vector<std::int32_t>{0, 1}));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace jellysim::io
