@@ -27,8 +27,10 @@ void write_taylor_green(const io::OutputDir& out, const studies::TaylorGreenResu
   io::CsvWriter orders({"solver", "coarse_cells", "fine_cells", "order_l2", "order_max"});
   render::ChartSpec chart;
   chart.title = "Taylor-Green vortex: velocity error at t = " + io::format_double(s.end_time_s) + " s";
-  chart.x_label = "grid spacing dx (m)";
-  chart.y_label = "RMS velocity error (m/s)";
+  chart.x_label = "grid spacing dx";
+  chart.x_unit = "m";
+  chart.y_label = "RMS velocity error";
+  chart.y_unit = "m/s";
   chart.log_x = chart.log_y = true;
   for (const std::string& solver : s.solvers) {
     render::Series series;
@@ -77,9 +79,9 @@ void write_solver_cost(const io::OutputDir& out, const std::vector<studies::Solv
   render::ChartSpec chart;
   chart.title = "Fluid solver cost per step";
   chart.x_label = "cells";
-  chart.y_label = "seconds per step";
+  chart.y_label = "wall time per step";
+  chart.y_unit = "s";
   chart.log_x = chart.log_y = true;
-  chart.legend = render::LegendCorner::TopLeft;
   for (const auto& r : rows) {
     const std::string label = r.solver + " + " + r.pressure_solver;
     csv.row({r.solver, r.pressure_solver}, {static_cast<double>(r.cells), r.dt_s, static_cast<double>(r.steps), r.seconds_per_step,

@@ -71,9 +71,9 @@ void write_outputs(const io::OutputDir& out, const std::vector<ConvergenceStudy>
   render::ChartSpec chart;
   chart.title = "Global error at t = end_time (two-mass spring)";
   chart.x_label = "time step dt";
+  chart.x_unit = "s";
   chart.y_label = "max-norm state error";
   chart.log_x = chart.log_y = true;
-  chart.legend = render::LegendCorner::BottomLeft;
   for (const ConvergenceStudy& s : studies) {
     render::Series series;
     series.label = s.integrator + " (order " + io::format_double(std::round(s.measured_order * 100) / 100) + ")";

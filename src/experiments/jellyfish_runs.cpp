@@ -225,25 +225,26 @@ void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::Met
     }
     return s;
   };
-  auto chart = [&](const std::string& name, const std::string& chart_title, const std::string& y_label,
-                   std::vector<render::Series> list) {
+  auto chart = [&](const std::string& name, const std::string& chart_title, const std::string& quantity,
+                   const std::string& unit, std::vector<render::Series> list) {
     render::ChartSpec c;
     c.title = chart_title;
-    c.x_label = "t (s)";
-    c.y_label = y_label;
+    c.x_label = "t";
+    c.x_unit = "s";
+    c.y_label = quantity;
+    c.y_unit = unit;
     c.series = std::move(list);
-    c.legend = render::LegendCorner::TopLeft;
     write_via_temporary(out, name, [&](const auto& p) { render::write_chart_png(c, p); });
   };
-  chart("position.png", title + ": position (Fig. 8.15)", "m",
+  chart("position.png", title + ": position (Fig. 8.15)", "bell centroid travelled", "m",
         {series("bell centroid", [](const auto& r) { return r.position; }),
          series("Daniel's model (eq. 6.5)", [](const auto& r) { return r.daniel_position; })});
-  chart("velocity.png", title + ": velocity (Fig. 8.16)", "m/s",
+  chart("velocity.png", title + ": velocity (Fig. 8.16)", "velocity", "m/s",
         {series("bell centroid", [](const auto& r) { return r.velocity; }),
          series("Daniel's model (eq. 6.5)", [](const auto& r) { return r.daniel_velocity; })});
-  chart("acceleration.png", title + ": acceleration (Fig. 8.17)", "m/s^2",
+  chart("acceleration.png", title + ": acceleration (Fig. 8.17)", "acceleration", "m/s²",
         {series("bell centroid", [](const auto& r) { return r.acceleration; })});
-  chart("morphology.png", title + ": morphology (Fig. 8.18)", "ratio to rest",
+  chart("morphology.png", title + ": morphology (Fig. 8.18)", "ratio to rest", "",
         {series("volume V/V0", [](const auto& r) { return r.volume_ratio; }),
          series("aperture A/A0", [](const auto& r) { return r.aperture_ratio; })});
 }

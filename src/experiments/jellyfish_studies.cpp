@@ -57,7 +57,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
     // Area retained over time (Fig. 8.9) and the refinement study.
     render::ChartSpec chart;
     chart.title = "Oval membrane: area retained (" + base.solver + ")";
-    chart.x_label = "t (s)";
+    chart.x_label = "t";
+    chart.x_unit = "s";
     chart.y_label = "A / A0";
     if (std::find(refinement.begin(), refinement.end(), base.cells) == refinement.end()) {
       chart.series.emplace_back();
@@ -85,7 +86,6 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
       }
     }
     out.write_text("refinement.csv", refine.text());
-    chart.legend = render::LegendCorner::BottomLeft;
     write_chart(out, "area.png", chart);
     nlohmann::ordered_json fig;
     fig["solver"] = base.solver;
@@ -288,8 +288,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
                            "failed"});
     render::ChartSpec distance, trajectories;
     distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
-    distance.x_label = "frequency (Hz)";
-    distance.y_label = "distance (m)";
+    distance.x_label = "frequency";
+    distance.x_unit = "Hz";
+    distance.y_label = "distance travelled";
+    distance.y_unit = "m";
     distance.series.resize(2);
     distance.series[0].label = "mean of " + std::to_string(placements) + " placements, " +
                                io::format_double(base.duration_s) + " s";
@@ -298,9 +300,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     distance.series[1].markers = true;
     distance.series[1].line = false;
     trajectories.title = "Trajectories (Fig. 8.13), first placement";
-    trajectories.x_label = "t (s)";
-    trajectories.y_label = "position (m)";
-    trajectories.legend = render::LegendCorner::TopLeft;
+    trajectories.x_label = "t";
+    trajectories.x_unit = "s";
+    trajectories.y_label = "bell centroid travelled";
+    trajectories.y_unit = "m";
     nlohmann::ordered_json table = nlohmann::ordered_json::array();
     for (const auto& r : runs) {
       run_csv.row({r.frequency, static_cast<double>(r.placement), r.offset_m, r.distance(), r.lateral(),

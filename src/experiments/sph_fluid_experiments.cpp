@@ -201,9 +201,9 @@ void write_cost(const io::OutputDir& out, const std::vector<CostRow>& rows, doub
   render::ChartSpec chart;
   chart.title = "CPU time to simulate " + io::format_double(duration) + " s of the mosquito larva";
   chart.x_label = "gas constant kappa_p";
-  chart.y_label = "CPU seconds";
+  chart.y_label = "CPU time";
+  chart.y_unit = "s";
   chart.log_x = chart.log_y = true;
-  chart.legend = render::LegendCorner::TopLeft;
   for (const CostRow& r : rows) {
     const auto& st = r.result.statistics;
     csv.row({r.integrator, r.control}, {r.gas_constant, r.cpu_seconds, r.wall_seconds, static_cast<double>(st.steps),

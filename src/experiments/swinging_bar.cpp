@@ -103,7 +103,9 @@ void write_energy_outputs(const io::OutputDir& out, const Recording& rec, const 
   chart.title = "Swinging bar energy, ";
   chart.title += integrator;
   chart.x_label = "t";
+  chart.x_unit = "s";
   chart.y_label = "energy";
+  chart.y_unit = "J";
   for (std::string name : {"kinetic", "elastic", "gravity", "total"}) {
     chart.series.emplace_back();
     chart.series.back().label = std::move(name);

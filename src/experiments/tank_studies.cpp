@@ -90,8 +90,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
 
     render::ChartSpec chart;
     chart.title = "Steering toward a target (heading from +y, degrees)";
-    chart.x_label = "t (s)";
-    chart.y_label = "degrees";
+    chart.x_label = "t";
+    chart.x_unit = "s";
+    chart.y_label = "heading";
+    chart.y_unit = "°";
     auto series = [&](const std::string& label, const std::vector<double>& y) {
       render::Series s;
       s.label = label;
@@ -102,7 +104,6 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
     chart.series = {series("steered left", to_left.heading_deg), series("not steered", none.heading_deg),
                     series("steered right", to_right.heading_deg), series("bearing of left target", to_left.bearing_deg),
                     series("bearing of right target", to_right.bearing_deg)};
-    chart.legend = render::LegendCorner::TopLeft;
     write_via_temporary(out, "heading.png", [&](const auto& p) { render::write_chart_png(chart, p); });
 
     // After the settling time: mean heading and mean distance from the target's bearing.
@@ -171,7 +172,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_obstacle_flow(const Context
     write_via_temporary(out, "flow.png", [&](const auto& path) { render::write_field_png(p, po, path); });
     render::ChartSpec chart;
     chart.title = "Flow past a cylinder: drag coefficient";
-    chart.x_label = "t (s)";
+    chart.x_label = "t";
+    chart.x_unit = "s";
     chart.y_label = "C_D = F / (rho U^2 D / 2)";
     render::Series s;
     s.label = "C_D";

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace jellysim::render {
 namespace {
@@ -63,6 +64,12 @@ void plotted_values(const Series& s, bool log_x, bool log_y, std::vector<PLFLT>&
   }
 }
 
+/// Columns and rows of the legend: up to four entries in one column, more in two or three.
+std::pair<PLINT, PLINT> legend_grid(std::size_t entries) {
+  const PLINT columns = entries <= 4 ? 1 : entries <= 8 ? 2 : 3;
+  return {columns, (static_cast<PLINT>(entries) + columns - 1) / columns};
+}
+
 void draw_legend(plstream& pls, const ChartSpec& chart) {
   const auto n = static_cast<PLINT>(chart.series.size());
   std::vector<PLINT> opts(n), text_colors(n), line_colors(n), line_styles(n), symbol_colors(n), symbol_numbers(n);
@@ -78,20 +85,64 @@ void draw_legend(plstream& pls, const ChartSpec& chart) {
     texts[i] = s.label.c_str();
     symbols[i] = "#(728)";
   }
-  const bool top = chart.legend == LegendCorner::TopRight || chart.legend == LegendCorner::TopLeft;
-  const bool right = chart.legend == LegendCorner::TopRight || chart.legend == LegendCorner::BottomRight;
-  const PLINT position = PL_POSITION_INSIDE | (top ? PL_POSITION_TOP : PL_POSITION_BOTTOM) |
-                         (right ? PL_POSITION_RIGHT : PL_POSITION_LEFT);
+  // Below the plot area and its axis label, in the space kept free there: it hides no data.
+  const PLINT position = PL_POSITION_OUTSIDE | PL_POSITION_BOTTOM;  // centred
   PLFLT w = 0, h = 0;
   pls.legend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, position,
-             0.02, 0.02, 0.1, 0, 1, 1, 0, 0, n, opts.data(), 1.0, 0.8, 2.0, 1.0, text_colors.data(), texts.data(),
+             0.0, 0.17, 0.05, 0, 1, 1, legend_grid(chart.series.size()).second, legend_grid(chart.series.size()).first, n, opts.data(), 0.6, 0.7, 1.6, 0.0, text_colors.data(), texts.data(),
              nullptr, nullptr, nullptr, nullptr, line_colors.data(), line_styles.data(), line_widths.data(),
              symbol_colors.data(), symbol_scales.data(), symbol_numbers.data(), symbols.data());
 }
 
+/// The largest finite magnitude of the x (or y) values.
+double largest_magnitude(const std::vector<Series>& series, bool y_values) {
+  double m = 0.0;
+  for (const Series& s : series)
+    for (double v : y_values ? s.y : s.x)
+      if (std::isfinite(v)) m = std::max(m, std::abs(v));
+  return m;
+}
+
+/// "quantity (unit)", or the quantity alone for a pure number.
+std::string axis_label(const std::string& quantity, const std::string& unit) {
+  return unit.empty() ? quantity : quantity + " (" + unit + ")";
+}
+
 }  // namespace
 
-void write_chart_png(const ChartSpec& chart, const std::filesystem::path& png_path) {
+AxisUnit fitting_unit(const std::string& si_unit, double max_abs) {
+  const bool prefixable = !si_unit.empty() && si_unit != "°";
+  if (!prefixable || !(max_abs > 0.0) || max_abs >= 0.1) return {si_unit, 1.0};
+  const bool length = si_unit == "m" || si_unit.starts_with("m/");
+  const std::vector<std::pair<const char*, double>> prefixes =
+      length ? std::vector<std::pair<const char*, double>>{{"c", 1e2}, {"m", 1e3}, {"µ", 1e6}}
+             : std::vector<std::pair<const char*, double>>{{"m", 1e3}, {"µ", 1e6}};
+  for (const auto& [prefix, factor] : prefixes)
+    if (max_abs * factor >= 0.1) return {prefix + si_unit, factor};
+  return {prefixes.back().first + si_unit, prefixes.back().second};
+}
+
+namespace {
+
+/// The chart with its values in the units shown (linear axes only; log axes keep SI units).
+ChartSpec in_shown_units(const ChartSpec& chart, std::string& x_label, std::string& y_label) {
+  ChartSpec shown = chart;
+  const AxisUnit xu = chart.log_x ? AxisUnit{chart.x_unit, 1.0} : fitting_unit(chart.x_unit, largest_magnitude(chart.series, false));
+  const AxisUnit yu = chart.log_y ? AxisUnit{chart.y_unit, 1.0} : fitting_unit(chart.y_unit, largest_magnitude(chart.series, true));
+  for (Series& s : shown.series) {
+    for (double& v : s.x) v *= xu.per_si;
+    for (double& v : s.y) v *= yu.per_si;
+  }
+  x_label = axis_label(chart.x_label, xu.unit);
+  y_label = axis_label(chart.y_label, yu.unit);
+  return shown;
+}
+
+}  // namespace
+
+void write_chart_png(const ChartSpec& spec, const std::filesystem::path& png_path) {
+  std::string x_label, y_label;
+  const ChartSpec chart = in_shown_units(spec, x_label, y_label);
   Bounds b;
   std::vector<PLFLT> x, y;
   for (const Series& s : chart.series) {
@@ -105,9 +156,15 @@ void write_chart_png(const ChartSpec& chart, const std::filesystem::path& png_pa
   open_png(pls, png_path, chart.width_px, chart.height_px);
   pls.col0(1);
   pls.schr(0, 0.9);
-  const PLINT axis = (chart.log_x ? 10 : 0) + (chart.log_y ? 20 : 0) + 2;  // 2: with grid lines
-  pls.env(b.xmin, b.xmax, b.ymin, b.ymax, 0, axis);
-  pls.lab(chart.x_label.c_str(), chart.y_label.c_str(), chart.title.c_str());
+  // The plot area leaves room below for the legend (a line per series).
+  pls.adv(0);
+  const double legend_height = 0.045 * static_cast<double>(legend_grid(chart.series.size()).second) + 0.03;
+  pls.vpor(0.09, 0.96, 0.13 + legend_height, 0.91);
+  pls.wind(b.xmin, b.xmax, b.ymin, b.ymax);
+  const std::string x_options = std::string("bcnstg") + (chart.log_x ? "l" : "");
+  const std::string y_options = std::string("bcnstvg") + (chart.log_y ? "l" : "");
+  pls.box(x_options.c_str(), 0.0, 0, y_options.c_str(), 0.0, 0);
+  pls.lab(x_label.c_str(), y_label.c_str(), chart.title.c_str());
   for (std::size_t i = 0; i < chart.series.size(); ++i) {
     const Series& s = chart.series[i];
     plotted_values(s, chart.log_x, chart.log_y, x, y);

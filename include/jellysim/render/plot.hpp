@@ -18,15 +18,26 @@ struct Series {
   bool dashed = false;
 };
 
-enum class LegendCorner { TopRight, TopLeft, BottomRight, BottomLeft };
-
+/// A chart of series; the legend sits outside the data, below the plot area.
 struct ChartSpec {
-  std::string title, x_label, y_label;
+  std::string title;
+  std::string x_label, y_label;  ///< the quantities ("t", "position")
+  /// SI units of the values ("s", "m", "m/s"). A linear axis shows them in the prefixed unit that
+  /// fits its data (cm, mm/s: fitting_unit), labelled "quantity (unit)"; empty: a pure number.
+  std::string x_unit, y_unit;
   bool log_x = false, log_y = false;  ///< log axes (non-positive values are dropped)
   std::vector<Series> series;
-  LegendCorner legend = LegendCorner::TopRight;
   int width_px = 960, height_px = 680;
 };
+
+/// A unit to show values of SI `unit` whose largest magnitude is max_abs: the unit itself, or its
+/// centi- (lengths only), milli- or micro- form, the first that makes max_abs at least 0.1
+/// (degrees and pure numbers keep theirs).
+struct AxisUnit {
+  std::string unit;
+  double per_si = 1.0;  ///< shown value = SI value × per_si
+};
+AxisUnit fitting_unit(const std::string& si_unit, double max_abs);
 
 /// Writes a line/scatter chart with axes, labels and a legend to a PNG file.
 void write_chart_png(const ChartSpec& chart, const std::filesystem::path& png_path);
