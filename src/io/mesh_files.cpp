@@ -49,13 +49,14 @@ VertexRange vertex_range(const Mesh& mesh, const MeshPart& part) {
 
 }  // namespace
 
-std::string obj_text(const Mesh& mesh, const std::string& comment) {
+std::string obj_text(const Mesh& mesh, const std::string& comment, const std::string& object) {
   std::string out = "# " + comment + "\n# " + std::to_string(mesh.vertex_count()) + " vertices, " +
                     std::to_string(mesh.triangle_count()) + " triangles (jellysim)\n";
+  if (!object.empty()) out += "o " + object + "\n";
   for (const Vec3& p : mesh.positions) append_vec(out, "v", p);
   for (const Vec3& n : mesh.normals) append_vec(out, "vn", n);
   for (const MeshPart& part : mesh.parts) {
-    out += "g " + part.name + "\n";
+    out += (object.empty() ? "g " : "usemtl ") + part.name + "\n";
     for (std::uint32_t k = part.first_index; k < part.first_index + part.index_count; k += 3) {
       out += 'f';
       for (int e = 0; e < 3; ++e) {

@@ -15,6 +15,7 @@
 #include "jellysim/geometry/rendering_model.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/mesh_files.hpp"
+#include "jellysim/io/point_caches.hpp"
 #include "jellysim/render/video.hpp"
 
 #ifndef JELLYSIM_WEB_DIR
@@ -113,6 +114,93 @@ Camera path_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school
   const double distance = std::max(s.camera_distance * extent, 1.05 * radius / std::sin(half_fov));
   return camera_looking_at(0.5 * (lo + hi), view_direction(s), distance, s.fov_y_deg);
 }
+
+/// The vertices part `name` of `mesh` uses (a contiguous block) as a mesh of its own, or an empty mesh.
+geometry::Mesh part_mesh(const geometry::Mesh& mesh, const std::string& name) {
+  geometry::Mesh sub;
+  const geometry::MeshPart* part = mesh.part(name);
+  if (part == nullptr || part->index_count == 0) return sub;
+  std::uint32_t lo = UINT32_MAX, hi = 0;
+  for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k) {
+    lo = std::min(lo, mesh.indices[k]);
+    hi = std::max(hi, mesh.indices[k]);
+  }
+  sub.positions.assign(mesh.positions.begin() + lo, mesh.positions.begin() + hi + 1);
+  sub.normals.assign(mesh.normals.begin() + lo, mesh.normals.begin() + hi + 1);
+  for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k)
+    sub.indices.push_back(mesh.indices[k] - lo);
+  sub.parts.push_back({name, 0, part->index_count});
+  return sub;
+}
+
+/// Gathers each body's vertices frame by frame for the point caches and the USD stage: every
+/// jellyfish with its root (the middle of its umbrella), and the obstacles (root at the origin).
+class CacheRecorder {
+ public:
+  explicit CacheRecorder(std::size_t jellyfish) : bodies_(jellyfish) {
+    for (std::size_t j = 0; j < jellyfish; ++j) bodies_[j].name = "jellyfish_" + std::to_string(j + 1);
+  }
+  void add(const std::vector<geometry::FrameGeometry>& parts, const geometry::Mesh& merged) {
+    for (std::size_t j = 0; j < parts.size(); ++j) record(bodies_[j], parts[j].mesh, umbrella_centre(parts[j]));
+    geometry::Mesh obstacles = part_mesh(merged, "obstacles");
+    if (!obstacles.positions.empty()) {
+      if (obstacle_body_.empty()) obstacle_body_.push_back({"obstacles", {}, {}, {}});
+      record(obstacle_body_.front(), obstacles, Vec3{});
+    }
+  }
+  void write(const PipelineSettings& s, const std::vector<double>& times, const io::OutputDir& out,
+             AnimationOutputs& result) const {
+    std::vector<const Body*> all;
+    for (const Body& b : bodies_) all.push_back(&b);
+    for (const Body& b : obstacle_body_) all.push_back(&b);
+    if (s.pc2 || s.mdd) {
+      const io::OutputDir caches = out.subdirectory("caches");
+      for (const Body* b : all) {
+        const std::string comment = "jellysim rest mesh (frame 0) of " + b->name + "; metres, y up";
+        caches.write_text(b->name + ".obj", io::obj_text(b->rest, comment, b->name));
+        result.files.push_back("caches/" + b->name + ".obj");
+        if (s.pc2) {
+          caches.write_text(b->name + ".pc2", io::pc2_bytes(b->frames, 0.0));
+          result.files.push_back("caches/" + b->name + ".pc2");
+        }
+        if (s.mdd) {
+          caches.write_text(b->name + ".mdd", io::mdd_bytes(b->frames, times));
+          result.files.push_back("caches/" + b->name + ".mdd");
+        }
+      }
+    }
+    if (s.usda) {
+      std::vector<io::UsdBody> stage;
+      for (const Body* b : all) {
+        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}};
+        if (b->name == "obstacles") u.colour = {0.23, 0.2, 0.17};
+        for (std::size_t k = 0; k < b->frames.size(); ++k) {
+          std::vector<Vec3> local = b->frames[k];
+          for (Vec3& p : local) p = p - b->roots[k];
+          u.points.push_back(std::move(local));
+        }
+        stage.push_back(std::move(u));
+      }
+      out.write_text("jellyfish.usda", io::usda_text(stage, s.fps, "jellysim: one prim per jellyfish and for the obstacles"));
+      result.files.push_back("jellyfish.usda");
+    }
+  }
+
+ private:
+  struct Body {
+    std::string name;
+    geometry::Mesh rest;            ///< frame 0 (world positions)
+    io::PointFrames frames;         ///< world positions per frame
+    std::vector<Vec3> roots;        ///< per frame
+  };
+  static void record(Body& b, const geometry::Mesh& mesh, Vec3 root) {
+    if (b.frames.empty()) b.rest = mesh;
+    b.frames.push_back(mesh.positions);
+    b.roots.push_back(root);
+  }
+  std::vector<Body> bodies_;
+  std::vector<Body> obstacle_body_;  ///< empty or one
+};
 
 std::string base64(const std::string& bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -269,7 +357,11 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   std::unique_ptr<Mp4Writer> video;
   const auto video_tmp = out.temporary_for("jellyfish.mp4");
   if (s.video) video = std::make_unique<Mp4Writer>(video_tmp, s.width_px, s.height_px, s.fps);
-  const io::OutputDir frame_dir(out.subdirectory("frames")), mesh_dir(out.subdirectory("meshes"));
+  // Folders only for what is written (an empty folder would be a surprise).
+  const std::optional<io::OutputDir> frame_dir =
+      s.png_frames ? std::optional(out.subdirectory("frames")) : std::nullopt;
+  const std::optional<io::OutputDir> mesh_dir =
+      s.obj || s.ply ? std::optional(out.subdirectory("meshes")) : std::nullopt;
 
   AnimationOutputs result;
   result.renderer = renderer ? renderer->renderer_name() : "";
@@ -280,6 +372,8 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   double geometry_s = 0.0, render_s = 0.0;
   RgbImage image;  // reused frame to frame
   std::vector<geometry::FrameGeometry> parts(school.size());
+  CacheRecorder caches(school.size());
+  const bool caching = s.pc2 || s.mdd || s.usda;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto t0 = Clock::now();
     for (std::size_t j = 0; j < school.size(); ++j) builders[j].build(school[j][k], parts[j]);
@@ -299,6 +393,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
         throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
       }
     }
+    if (caching) caches.add(parts, g.mesh);
     geometry_s += seconds_since(t0);
     if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
       throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
@@ -315,20 +410,20 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       render_s += seconds_since(t0);
       if (s.png_frames) {
         const std::string name = frame_name(k, "png");
-        const auto tmp = frame_dir.temporary_for(name);
+        const auto tmp = frame_dir->temporary_for(name);
         write_png(image, tmp);
-        frame_dir.commit(tmp, name);
+        frame_dir->commit(tmp, name);
         result.files.push_back("frames/" + name);
       }
       if (video) video->add(image);
     }
     const std::string comment = "jellysim frame " + std::to_string(k) + " t = " + io::format_double(frames[k].time_s) + " s";
     if (s.obj) {
-      mesh_dir.write_text(frame_name(k, "obj"), io::obj_text(g.mesh, comment));
+      mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(g.mesh, comment));
       result.files.push_back("meshes/" + frame_name(k, "obj"));
     }
     if (s.ply) {
-      mesh_dir.write_text(frame_name(k, "ply"), io::ply_bytes(g.mesh, comment));
+      mesh_dir->write_text(frame_name(k, "ply"), io::ply_bytes(g.mesh, comment));
       result.files.push_back("meshes/" + frame_name(k, "ply"));
     }
     result.vertices = g.mesh.vertex_count();
@@ -342,6 +437,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
     out.commit(video_tmp, "jellyfish.mp4");
     result.files.push_back("jellyfish.mp4");
   }
+  if (caching) caches.write(s, animation.times_s, out, result);
   if (s.glb) {
     const std::string glb = io::glb_bytes(animation, glb_materials(s.style));
     out.write_text("jellyfish.glb", glb);

@@ -43,6 +43,9 @@ ParameterTable make_render_parameters() {
       boolean("render.obj", "false", "meshes/frame_0000.obj … (about 1.5 MB per frame)"),
       boolean("render.ply", "false", "meshes/frame_0000.ply …"),
       boolean("render.viewer", "true", "viewer.html (needs glb)"),
+      boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
+      boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
+      boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
 
       integer("render.noise.seed", "1", 0, 2147483647,
               "the individual (0 = Perlin's reference permutation)"),
@@ -124,6 +127,9 @@ render::PipelineSettings read_render_settings(const io::Config& c) {
   s.obj = r.boolean("render.obj");
   s.ply = r.boolean("render.ply");
   s.viewer = r.boolean("render.viewer");
+  s.pc2 = r.boolean("render.pc2");
+  s.mdd = r.boolean("render.mdd");
+  s.usda = r.boolean("render.usda");
   if (s.viewer && !s.glb) throw InputError("field 'render.viewer' = true needs 'render.glb' = true");
   s.viewer_script = render::default_viewer_script();
   geometry::validate_geometry_settings(g);

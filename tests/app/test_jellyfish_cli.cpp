@@ -180,6 +180,10 @@ TEST(JellyfishCli, RunRendersEveryJellyfishOfTheScene) {
   EXPECT_EQ(s["animation"]["vertices_per_frame"].get<int>(), 2 * s1["animation"]["vertices_per_frame"].get<int>());
   EXPECT_TRUE(fs::exists(dir / "metrics_jellyfish_2.csv"));
   EXPECT_TRUE(fs::exists(dir / "jellyfish.glb"));
+  // A point cache per jellyfish, each as large as the one jellyfish's (same mesh, same frames).
+  for (const char* f : {"caches/jellyfish_1.obj", "caches/jellyfish_1.pc2", "caches/jellyfish_2.pc2"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_EQ(fs::file_size(dir / "caches/jellyfish_2.pc2"), fs::file_size(one / "caches/jellyfish_1.pc2"));
   fs::remove_all(dir);
   fs::remove_all(one);
 }
@@ -195,8 +199,14 @@ TEST(JellyfishCli, RunDrawsTheSceneObstaclesAsPrisms) {
                           "[[objects]]\ntype = \"circle\"\ncentre = [0.12, 0.25]\nradius = 0.02\n";
   const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
                             "--set render.viewer=false --set render.obj=true --set render.ply=false --out ";
-  const Result r = run_cli("run " + scene.string() + quick + dir.string());
+  const Result r = run_cli("run " + scene.string() + " --set render.usda=true" + quick + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The obstacles get a point cache and a USD prim of their own beside the jellyfish's.
+  EXPECT_TRUE(fs::exists(dir / "caches/obstacles.pc2"));
+  const std::string usda = slurp(dir / "jellyfish.usda");
+  EXPECT_NE(usda.find("def Xform \"jellyfish_1\""), std::string::npos);
+  EXPECT_NE(usda.find("def Xform \"obstacles\""), std::string::npos);
+  EXPECT_NE(usda.find("endTimeCode = 3"), std::string::npos) << "frames 0 to 3 of 0.1 s at 30 per second";
   const Result r0 = run_cli("run" + quick + plain.string());
   ASSERT_EQ(r0.exit_code, 0) << r0.output;
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));

@@ -14,8 +14,10 @@
 namespace jellysim::io {
 
 /// Wavefront OBJ: `v` and `vn` lines (shortest round-trip text of the float values), one `g`
-/// group per mesh part with `f a//a b//b c//c` faces (1-based).
-std::string obj_text(const geometry::Mesh& mesh, const std::string& comment);
+/// group per mesh part with `f a//a b//b c//c` faces (1-based). With `object` given, one object of
+/// that name whose parts are materials (`usemtl`) instead: importers then keep it one mesh with the
+/// vertex order of the file, as a point cache needs.
+std::string obj_text(const geometry::Mesh& mesh, const std::string& comment, const std::string& object = "");
 
 /// PLY, binary little endian: float x y z nx ny nz per vertex, faces as uchar-counted uint lists.
 std::string ply_bytes(const geometry::Mesh& mesh, const std::string& comment);

@@ -41,6 +41,9 @@ struct PipelineSettings {
   int samples = 4;
   RenderStyle style;
   bool png_frames = true, video = true, glb = true, obj = true, ply = true, viewer = true;
+  /// Point caches for VFX pipelines (caches/NAME.obj rest mesh + NAME.pc2 / NAME.mdd per jellyfish
+  /// and for the obstacles) and a USD stage (jellyfish.usda: root motion + time-sampled points).
+  bool pc2 = true, mdd = false, usda = false;
   /// The bundled viewer script (three.js + GLTFLoader + controls) copied next to viewer.html.
   std::filesystem::path viewer_script;
 };
