@@ -91,7 +91,7 @@ std::string ply_bytes(const Mesh& mesh, const std::string& comment) {
 
 namespace {
 
-constexpr int kFloat = 5126, kUnsignedInt = 5125;
+constexpr int kFloat = 5126, kUnsignedInt = 5125, kShort = 5122, kUnsignedByte = 5121;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 /// Builds the BIN chunk and the bufferViews/accessors that describe it.
@@ -102,7 +102,8 @@ class GlbBuilder {
   std::string bin;
 
   /// A VEC3 float accessor of `count` vectors; min/max computed from the stored floats.
-  int vec3(const std::vector<Vec3>& values, std::size_t first, std::size_t count, const Vec3* base) {
+  int vec3(const std::vector<Vec3>& values, std::size_t first, std::size_t count, const Vec3* base,
+           bool vertex_attribute = true) {
     std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
                             std::numeric_limits<float>::max()};
     std::array<float, 3> hi{-lo[0], -lo[1], -lo[2]};
@@ -118,8 +119,42 @@ class GlbBuilder {
         hi[static_cast<std::size_t>(c)] = std::max(hi[static_cast<std::size_t>(c)], f[static_cast<std::size_t>(c)]);
       }
     }
-    const int view = end_view(offset, kArrayBuffer);
+    const int view = end_view(offset, vertex_attribute ? kArrayBuffer : -1);
     return add_accessor(view, kFloat, count, "VEC3", nlohmann::json(lo), nlohmann::json(hi));
+  }
+
+  /// Position differences (frame − base) of `count` vertices as normalized shorts of `scale`
+  /// (KHR_mesh_quantization), each vertex padded to 8 bytes (vertex attributes align to 4).
+  int quantized_differences(const std::vector<Vec3>& frame, const std::vector<Vec3>& base, std::size_t first,
+                            std::size_t count, double scale) {
+    std::array<int, 3> lo{32767, 32767, 32767}, hi{-32767, -32767, -32767};
+    const std::size_t offset = begin_view();
+    for (std::size_t v = first; v < first + count; ++v) {
+      const Vec3 d = frame[v] - base[v];
+      const std::array<double, 3> c{d.x, d.y, d.z};
+      for (std::size_t i = 0; i < 3; ++i) {
+        const auto q = static_cast<std::int16_t>(std::clamp(std::lround(c[i] / scale * 32767.0), -32767L, 32767L));
+        append_raw(bin, q);
+        lo[i] = std::min(lo[i], static_cast<int>(q));
+        hi[i] = std::max(hi[i], static_cast<int>(q));
+      }
+      append_raw(bin, std::int16_t{0});
+    }
+    const int view = end_view(offset, kArrayBuffer, 8);
+    // Bounds of a normalized integer accessor are its raw integers.
+    const int a = add_accessor(view, kShort, count, "VEC3", nlohmann::json(lo), nlohmann::json(hi));
+    accessors[static_cast<std::size_t>(a)]["normalized"] = true;
+    return a;
+  }
+
+  /// Values in [0, 1] as normalized unsigned bytes (0 or 255 for morph weights).
+  int unit_bytes(const std::vector<std::uint8_t>& values) {
+    const std::size_t offset = begin_view();
+    bin.append(reinterpret_cast<const char*>(values.data()), values.size());
+    const int view = end_view(offset, -1);
+    const int a = add_accessor(view, kUnsignedByte, values.size(), "SCALAR", {}, {});
+    accessors[static_cast<std::size_t>(a)]["normalized"] = true;
+    return a;
   }
 
   int indices(const Mesh& mesh, const MeshPart& part, std::uint32_t first_vertex) {
@@ -151,9 +186,10 @@ class GlbBuilder {
     while (bin.size() % 4 != 0) bin.push_back('\0');
     return bin.size();
   }
-  int end_view(std::size_t offset, int target) {
+  int end_view(std::size_t offset, int target, int stride = 0) {
     nlohmann::json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}};
     if (target > 0) view["target"] = target;
+    if (stride > 0) view["byteStride"] = stride;
     buffer_views.push_back(view);
     return static_cast<int>(buffer_views.size()) - 1;
   }
@@ -198,61 +234,144 @@ std::string glb_container(const nlohmann::json& json, std::string bin) {
 
 }  // namespace
 
-std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials) {
-  geometry::validate_animation(animation);
-  const Mesh& first = animation.frames.front();
-  const std::size_t frames = animation.frames.size();
-  GlbBuilder b;
-  nlohmann::json primitives = nlohmann::json::array(), json_materials = nlohmann::json::array();
-  for (const MeshPart& part : first.parts) {
-    const VertexRange range = vertex_range(first, part);
-    nlohmann::json targets = nlohmann::json::array();
-    nlohmann::json primitive = {
-        {"attributes",
-         {{"POSITION", b.vec3(first.positions, range.first, range.count, nullptr)},
-          {"NORMAL", b.vec3(first.normals, range.first, range.count, nullptr)}}},
-        {"indices", b.indices(first, part, range.first)},
-        {"material", json_materials.size()},
-        {"mode", 4}};
-    for (std::size_t k = 1; k < frames; ++k) {
-      const Mesh& f = animation.frames[k];
-      targets.push_back({{"POSITION", b.vec3(f.positions, range.first, range.count, first.positions.data())},
-                         {"NORMAL", b.vec3(f.normals, range.first, range.count, first.normals.data())}});
+namespace {
+
+/// The frames of a body kept as morph targets: every `every`-th after frame 0, and the last.
+std::vector<std::size_t> kept_frames(std::size_t frames, int every) {
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 1; k < frames; ++k)
+    if (k % static_cast<std::size_t>(every) == 0 || k + 1 == frames) kept.push_back(k);
+  return kept;
+}
+
+/// The largest position difference from frame 0 (metres) over the kept frames: the quantization scale.
+double largest_difference(const GlbBody& body, const std::vector<std::size_t>& kept) {
+  double s = 0.0;
+  const Mesh& first = body.first;
+  for (std::size_t k : kept)
+    for (std::size_t v = 0; v < first.positions.size(); ++v) {
+      const Vec3 d = body.positions[k][v] - first.positions[v];
+      s = std::max({s, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
     }
-    if (frames > 1) primitive["targets"] = targets;
-    primitives.push_back(primitive);
-    const auto m = std::find_if(materials.begin(), materials.end(), [&](const GlbMaterial& g) { return g.part == part.name; });
-    json_materials.push_back(material_json(part.name, m == materials.end() ? nullptr : &*m));
+  return s > 0.0 ? s : 1.0;
+}
+
+}  // namespace
+
+std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
+                      const std::vector<GlbMaterial>& materials, int every) {
+  if (bodies.empty() || times_s.empty()) throw InputError("glb: no bodies or no frames");
+  if (every < 1) throw InputError("glb: every must be at least 1");
+  for (const GlbBody& body : bodies) {
+    if (body.positions.size() != times_s.size())
+      throw InputError("glb: " + body.name + " has " + std::to_string(body.positions.size()) + " frames for " +
+                       std::to_string(times_s.size()) + " times");
+    for (const auto& f : body.positions)
+      if (f.size() != body.first.positions.size()) throw InputError("glb: " + body.name + " changes its vertex count");
+    if (!body.root.empty() && body.root.size() != times_s.size())
+      throw InputError("glb: " + body.name + " needs one root position per frame");
   }
-  nlohmann::json mesh = {{"name", "jellyfish"}, {"primitives", primitives}};
+  const std::size_t frames = times_s.size();
+  std::vector<float> times;
+  for (double t : times_s) times.push_back(static_cast<float>(t - times_s.front()));
+  for (std::size_t k = 1; k < frames; ++k)
+    if (!(times[k] > times[k - 1])) throw InputError("animation frame times too close for single precision");
+  const std::vector<std::size_t> kept = kept_frames(frames, every);
+
+  GlbBuilder b;
+  nlohmann::json nodes = nlohmann::json::array(), meshes = nlohmann::json::array(),
+                 json_materials = nlohmann::json::array(), scene_nodes = nlohmann::json::array(),
+                 samplers = nlohmann::json::array(), channels = nlohmann::json::array();
+  std::vector<std::string> material_names;
+  auto material_for = [&](const std::string& part) {
+    const auto at = std::find(material_names.begin(), material_names.end(), part);
+    if (at != material_names.end()) return static_cast<int>(at - material_names.begin());
+    const auto m = std::find_if(materials.begin(), materials.end(), [&](const GlbMaterial& g) { return g.part == part; });
+    json_materials.push_back(material_json(part, m == materials.end() ? nullptr : &*m));
+    material_names.push_back(part);
+    return static_cast<int>(material_names.size()) - 1;
+  };
+  const int all_times = frames > 1 ? b.scalars(times, true) : -1;
+  int kept_times = -1;
+  if (!kept.empty()) {
+    std::vector<float> t{times.front()};
+    for (std::size_t k : kept) t.push_back(times[k]);
+    kept_times = kept.size() + 1 == frames ? all_times : b.scalars(t, true);
+  }
+  for (const GlbBody& body : bodies) {
+    const Mesh& first = body.first;
+    const double scale = largest_difference(body, kept);
+    std::vector<Vec3> base(first.positions);
+    for (Vec3& p : base) p = (1.0 / scale) * p;
+    nlohmann::json primitives = nlohmann::json::array();
+    for (const MeshPart& part : first.parts) {
+      const VertexRange range = vertex_range(first, part);
+      nlohmann::json primitive = {
+          {"attributes",
+           {{"POSITION", b.vec3(base, range.first, range.count, nullptr)},
+            {"NORMAL", b.vec3(first.normals, range.first, range.count, nullptr)}}},
+          {"indices", b.indices(first, part, range.first)},
+          {"material", material_for(part.name)},
+          {"mode", 4}};
+      nlohmann::json targets = nlohmann::json::array();
+      for (std::size_t k : kept)
+        targets.push_back({{"POSITION", b.quantized_differences(body.positions[k], first.positions, range.first,
+                                                                range.count, scale)}});
+      if (!targets.empty()) primitive["targets"] = targets;
+      primitives.push_back(primitive);
+    }
+    nlohmann::json mesh = {{"name", body.name}, {"primitives", primitives}};
+    if (!kept.empty()) mesh["weights"] = std::vector<double>(kept.size(), 0.0);
+    meshes.push_back(mesh);
+    const int mesh_node = static_cast<int>(nodes.size()) + 1;
+    nlohmann::json root_node = {{"name", body.name}, {"children", {mesh_node}}};
+    if (!body.root.empty()) root_node["translation"] = {body.root[0].x, body.root[0].y, body.root[0].z};
+    scene_nodes.push_back(nodes.size());
+    nodes.push_back(root_node);
+    nodes.push_back({{"name", body.name + "_mesh"}, {"mesh", meshes.size() - 1}, {"scale", {scale, scale, scale}}});
+    if (!kept.empty()) {
+      std::vector<std::uint8_t> weights;
+      for (std::size_t key = 0; key <= kept.size(); ++key)
+        for (std::size_t t = 1; t <= kept.size(); ++t) weights.push_back(t == key ? 255 : 0);
+      samplers.push_back({{"input", kept_times}, {"output", b.unit_bytes(weights)}, {"interpolation", "LINEAR"}});
+      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", mesh_node}, {"path", "weights"}}}});
+    }
+    const bool moves = !body.root.empty() && std::any_of(body.root.begin(), body.root.end(), [&](const Vec3& r) {
+      return r.x != body.root[0].x || r.y != body.root[0].y || r.z != body.root[0].z;
+    });
+    if (moves && frames > 1) {
+      samplers.push_back({{"input", all_times}, {"output", b.vec3(body.root, 0, frames, nullptr, false)}, {"interpolation", "LINEAR"}});
+      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", mesh_node - 1}, {"path", "translation"}}}});
+    }
+  }
   nlohmann::json json = {{"asset", {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}}},
                          {"scene", 0},
-                         {"scenes", {{{"nodes", {0}}}}},
-                         {"nodes", {{{"name", "jellyfish"}, {"mesh", 0}}}},
-                         {"materials", json_materials}};
-  if (frames > 1) {
-    mesh["weights"] = std::vector<double>(frames - 1, 0.0);
-    std::vector<float> times, weights;
-    for (std::size_t k = 0; k < frames; ++k) {
-      times.push_back(static_cast<float>(animation.times_s[k] - animation.times_s[0]));
-      for (std::size_t t = 1; t < frames; ++t) weights.push_back(t == k ? 1.0f : 0.0f);
-    }
-    for (std::size_t k = 1; k < frames; ++k)
-      if (!(times[k] > times[k - 1])) throw InputError("animation frame times too close for single precision");
-    const int input = b.scalars(times, true), output = b.scalars(weights, false);
-    nlohmann::json sampler = {{"input", input}, {"output", output}, {"interpolation", "LINEAR"}};
-    nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+                         {"scenes", {{{"nodes", scene_nodes}}}},
+                         {"nodes", nodes},
+                         {"materials", json_materials},
+                         {"meshes", meshes}};
+  if (!kept.empty()) {
+    json["extensionsUsed"] = {"KHR_mesh_quantization"};
+    json["extensionsRequired"] = {"KHR_mesh_quantization"};
+  }
+  if (!channels.empty()) {
     nlohmann::json swim = {{"name", "swim"}};
-    swim["samplers"] = nlohmann::json::array({sampler});
-    swim["channels"] = nlohmann::json::array({channel});
+    swim["samplers"] = samplers;
+    swim["channels"] = channels;
     json["animations"] = nlohmann::json::array({swim});
   }
-  json["meshes"] = {mesh};
   json["accessors"] = b.accessors;
   json["bufferViews"] = b.buffer_views;
   while (b.bin.size() % 4 != 0) b.bin.push_back('\0');
   json["buffers"] = {{{"byteLength", b.bin.size()}}};
   return glb_container(json, std::move(b.bin));
+}
+
+std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials) {
+  geometry::validate_animation(animation);
+  GlbBody body{"jellyfish", animation.frames.front(), {}, {}};
+  for (const Mesh& f : animation.frames) body.positions.push_back(f.positions);
+  return glb_bytes({body}, animation.times_s, materials, 1);
 }
 
 GlbContents parse_glb(const std::string& bytes) {

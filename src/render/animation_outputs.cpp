@@ -148,6 +148,23 @@ class CacheRecorder {
       record(obstacle_body_.front(), obstacles, Vec3{});
     }
   }
+  /// The bodies of the .glb: each jellyfish about its pivot with its root motion, the obstacles
+  /// at the origin.
+  std::vector<io::GlbBody> glb_bodies() const {
+    std::vector<io::GlbBody> bodies;
+    for (const Body& b : bodies_) {
+      io::GlbBody g{b.name, b.rest, {}, b.roots};
+      for (Vec3& p : g.first.positions) p = p - b.roots.front();
+      for (std::size_t k = 0; k < b.frames.size(); ++k) {
+        std::vector<Vec3> local = b.frames[k];
+        for (Vec3& p : local) p = p - b.roots[k];
+        g.positions.push_back(std::move(local));
+      }
+      bodies.push_back(std::move(g));
+    }
+    for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}});
+    return bodies;
+  }
   void write(const PipelineSettings& s, const std::vector<double>& times, const io::OutputDir& out,
              AnimationOutputs& result) const {
     std::vector<const Body*> all;
@@ -231,16 +248,21 @@ constexpr const char* kViewerHtml = R"(<!doctype html>
 </head>
 <body>
 <div id="info">jellysim: drag to orbit, scroll to zoom, space to pause</div>
-<!-- Works offline and from file://: the animation is embedded in jellyfish.glb.js (base64 of
-     jellyfish.glb) and three.js is bundled in jellyfish-viewer.js (web/ in the jellysim sources). -->
-<script src="jellyfish.glb.js"></script>
-<script src="jellyfish-viewer.js"></script>
+<!-- three.js is bundled in jellyfish-viewer.js (web/ in the jellysim sources). The animation is
+     jellyfish.glb beside this page, fetched (serve the folder: browsers refuse fetches from
+     file://), or embedded as base64 in jellyfish.glb.js with render.page_embed = true. -->
+@EMBED@<script src="jellyfish-viewer.js"></script>
 <script>
+  const info = document.getElementById("info");
   if (window.JellyfishViewer) {
-    JellyfishViewer.start({ glbBase64: window.JELLYSIM_GLB_BASE64, glbUrl: "jellyfish.glb" });
+    JellyfishViewer.start({ glbBase64: window.JELLYSIM_GLB_BASE64, glbUrl: "jellyfish.glb" }).catch((e) => {
+      info.textContent = location.protocol === "file:"
+        ? "Browsers do not load jellyfish.glb from file://. Serve this folder (python3 -m http.server) and open " +
+          "http://localhost:8000/viewer.html, or run jellysim with --set render.page_embed=true."
+        : "Cannot show jellyfish.glb: " + e.message;
+    });
   } else {
-    document.getElementById("info").textContent =
-      "jellyfish-viewer.js is missing: build it with `npm ci && npm run build` in jellysim's web/ folder.";
+    info.textContent = "jellyfish-viewer.js is missing: build it with `npm ci && npm run build` in jellysim's web/ folder.";
   }
 </script>
 </body>
@@ -253,9 +275,15 @@ std::vector<io::GlbMaterial> glb_materials(const RenderStyle& s) {
 
 void write_viewer(const PipelineSettings& s, const std::string& glb, const io::OutputDir& out,
                   AnimationOutputs& result) {
-  out.write_text("viewer.html", kViewerHtml);
-  out.write_text("jellyfish.glb.js", "window.JELLYSIM_GLB_BASE64 = \"" + base64(glb) + "\";\n");
-  result.files.insert(result.files.end(), {"viewer.html", "jellyfish.glb.js"});
+  std::string page = kViewerHtml;
+  const std::string embed = s.page_embed ? "<script src=\"jellyfish.glb.js\"></script>\n" : "";
+  page.replace(page.find("@EMBED@"), 7, embed);
+  out.write_text("viewer.html", page);
+  result.files.push_back("viewer.html");
+  if (s.page_embed) {
+    out.write_text("jellyfish.glb.js", "window.JELLYSIM_GLB_BASE64 = \"" + base64(glb) + "\";\n");
+    result.files.push_back("jellyfish.glb.js");
+  }
   std::ifstream script(s.viewer_script, std::ios::binary);
   if (!script) return;
   std::stringstream text;
@@ -373,7 +401,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   RgbImage image;  // reused frame to frame
   std::vector<geometry::FrameGeometry> parts(school.size());
   CacheRecorder caches(school.size());
-  const bool caching = s.pc2 || s.mdd || s.usda;
+  const bool caching = s.pc2 || s.mdd || s.usda || s.glb;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto t0 = Clock::now();
     for (std::size_t j = 0; j < school.size(); ++j) builders[j].build(school[j][k], parts[j]);
@@ -429,7 +457,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
     result.vertices = g.mesh.vertex_count();
     result.triangles = g.mesh.triangle_count();
     animation.times_s.push_back(frames[k].time_s);
-    animation.frames.push_back(std::move(g.mesh));
+    if (k == 0) animation.frames.push_back(std::move(g.mesh));  // the topology every frame must keep
     if (progress) progress(k + 1, frames.size());
   }
   if (video) {
@@ -439,7 +467,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   }
   if (caching) caches.write(s, animation.times_s, out, result);
   if (s.glb) {
-    const std::string glb = io::glb_bytes(animation, glb_materials(s.style));
+    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s.style), s.glb_every);
     out.write_text("jellyfish.glb", glb);
     result.files.push_back("jellyfish.glb");
     result.glb_bytes = glb.size();

@@ -39,10 +39,13 @@ ParameterTable make_render_parameters() {
       number("render.rim", "0.55", "", Range::closed(0.0, 1.0), "rim opacity/brightness at grazing angles"),
       boolean("render.png_frames", "true", "frames/frame_0000.png …"),
       boolean("render.video", "true", "jellyfish.mp4 (ffmpeg, H.264)"),
-      boolean("render.glb", "true", "jellyfish.glb (glTF 2.0, morph-target animation)"),
+      boolean("render.glb", "true", "jellyfish.glb (glTF 2.0: a node per jellyfish with its root motion, quantized morph targets)"),
+      integer("render.glb_every", "2", 1, 1000, "a morph target every n-th frame (and the last); playback interpolates"),
       boolean("render.obj", "false", "meshes/frame_0000.obj … (about 1.5 MB per frame)"),
       boolean("render.ply", "false", "meshes/frame_0000.ply …"),
       boolean("render.viewer", "true", "viewer.html (needs glb)"),
+      boolean("render.page_embed", "false",
+              "viewer.html embeds the .glb (jellyfish.glb.js, opens from file://); else loads it (serve the folder)"),
       boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
       boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
       boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
@@ -127,6 +130,8 @@ render::PipelineSettings read_render_settings(const io::Config& c) {
   s.obj = r.boolean("render.obj");
   s.ply = r.boolean("render.ply");
   s.viewer = r.boolean("render.viewer");
+  s.page_embed = r.boolean("render.page_embed");
+  s.glb_every = static_cast<int>(r.integer("render.glb_every"));
   s.pc2 = r.boolean("render.pc2");
   s.mdd = r.boolean("render.mdd");
   s.usda = r.boolean("render.usda");

@@ -216,7 +216,11 @@ TEST(JellyfishCli, RunDrawsTheSceneObstaclesAsPrisms) {
   EXPECT_EQ(extra % 6, 0);
   EXPECT_NE(slurp(dir / "meshes/frame_0000.obj").find("g obstacles"), std::string::npos);
   const auto glb = jellysim::io::parse_glb(slurp(dir / "jellyfish.glb"));
-  ASSERT_EQ(glb.json["meshes"][0]["primitives"].size(), 3u);
+  // A mesh per body: the jellyfish (umbrella, tentacles), then the obstacles at the origin.
+  ASSERT_EQ(glb.json["meshes"].size(), 2u);
+  EXPECT_EQ(glb.json["meshes"][0]["primitives"].size(), 2u);
+  EXPECT_EQ(glb.json["meshes"][1]["name"], "obstacles");
+  EXPECT_EQ(glb.json["nodes"][2]["name"], "obstacles");
   bool named = false;
   for (const auto& m : glb.json["materials"]) named |= m["name"] == "obstacles";
   EXPECT_TRUE(named);

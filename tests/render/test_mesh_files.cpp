@@ -103,6 +103,61 @@ TEST(MeshFiles, GlbRoundTripsWithItsVerticesFramesAndBounds) {
   EXPECT_EQ(j["materials"][0]["alphaMode"], "BLEND");
 }
 
+// A body with root motion, every second frame (and the last) a target: two nodes (the moving pivot, the scaled
+// mesh), quantized position differences that decode to the frames' positions within half a
+// quantization step, and the pivot's path as a translation channel.
+TEST(MeshFiles, GlbBodiesCarryRootMotionAndQuantizedMorphTargets) {
+  using geometry::Vec3;
+  const int frames = 4;
+  const geometry::Animation anim = small_animation(frames);
+  GlbBody body{"jellyfish_1", anim.frames[0], {}, {}};
+  for (int k = 0; k < frames; ++k) {
+    const Vec3 root{0.0, 0.002 * k, 0.0};
+    body.root.push_back(root);
+    std::vector<Vec3> local = anim.frames[static_cast<std::size_t>(k)].positions;
+    for (Vec3& p : local) p = p - root;
+    body.positions.push_back(local);
+  }
+  for (Vec3& p : body.first.positions) p = p - body.root[0];
+  const GlbContents glb = parse_glb(glb_bytes({body}, anim.times_s, {}, 2));
+  const nlohmann::json& j = glb.json;
+  EXPECT_EQ(j["extensionsRequired"][0], "KHR_mesh_quantization");
+  ASSERT_EQ(j["nodes"].size(), 2u);
+  EXPECT_EQ(j["nodes"][0]["name"], "jellyfish_1");
+  EXPECT_EQ(j["nodes"][0]["children"][0], 1);
+  const double scale = j["nodes"][1]["scale"][0].get<double>();
+  const auto& primitive = j["meshes"][0]["primitives"][0];
+  ASSERT_EQ(primitive["targets"].size(), 2u);  // frame 2 and the last, 3
+  const auto& base = j["accessors"][primitive["attributes"]["POSITION"].get<int>()];
+  const auto& target = j["accessors"][primitive["targets"][1]["POSITION"].get<int>()];
+  EXPECT_EQ(target["componentType"], 5122);
+  EXPECT_TRUE(target["normalized"].get<bool>());
+  const auto& view = j["bufferViews"][target["bufferView"].get<int>()];
+  EXPECT_EQ(view["byteStride"], 8);
+  const std::size_t base_at = j["bufferViews"][base["bufferView"].get<int>()]["byteOffset"];
+  const std::size_t target_at = view["byteOffset"];
+  double worst = 0.0;
+  for (std::size_t v = 0; v < target["count"].get<std::size_t>(); ++v)
+    for (std::size_t c = 0; c < 3; ++c) {
+      float b;
+      std::int16_t q;
+      std::memcpy(&b, glb.bin.data() + base_at + 12 * v + 4 * c, 4);
+      std::memcpy(&q, glb.bin.data() + target_at + 8 * v + 2 * c, 2);
+      const double decoded = scale * (static_cast<double>(b) + q / 32767.0);
+      const Vec3 p = body.positions[3][v];
+      worst = std::max(worst, std::abs(decoded - (c == 0 ? p.x : c == 1 ? p.y : p.z)));
+    }
+  EXPECT_LT(worst, 0.5 * scale / 32767.0 + 1e-7);  // half a step, plus the base's float rounding
+  const auto& channels = j["animations"][0]["channels"];
+  ASSERT_EQ(channels.size(), 2u);
+  EXPECT_EQ(channels[0]["target"]["path"], "weights");
+  EXPECT_EQ(channels[1]["target"]["path"], "translation");
+  EXPECT_EQ(channels[1]["target"]["node"], 0);
+  const auto& weights = j["accessors"][j["animations"][0]["samplers"][0]["output"].get<int>()];
+  EXPECT_EQ(weights["componentType"], 5121);
+  EXPECT_EQ(weights["count"], 3 * 2);  // keyframes 0, 2, 3 × two targets
+}
+
 TEST(MeshFiles, MalformedInputsAreInputErrors) {
   EXPECT_THROW(parse_glb("glTF"), InputError);
   geometry::Animation anim = small_animation(2);

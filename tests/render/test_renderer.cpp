@@ -197,8 +197,11 @@ TEST(Pipeline, WritesEveryPromisedFile) {
   EXPECT_EQ(calls, 4u);
   EXPECT_EQ(out.frames, 4u);
   for (const char* f : {"frames/frame_0000.png", "frames/frame_0003.png", "meshes/frame_0000.obj",
-                        "meshes/frame_0003.ply", "jellyfish.glb", "viewer.html", "jellyfish.glb.js"})
+                        "meshes/frame_0003.ply", "jellyfish.glb", "viewer.html", "caches/jellyfish_1.obj",
+                        "caches/jellyfish_1.pc2"})
     EXPECT_TRUE(fs::is_regular_file(dir / f)) << f;
+  // The page loads jellyfish.glb beside it; the base64 copy only with render.page_embed.
+  EXPECT_FALSE(fs::exists(dir / "jellyfish.glb.js"));
   if (s.video) {
     EXPECT_GT(fs::file_size(dir / "jellyfish.mp4"), 1000u);
   }

@@ -28,12 +28,29 @@ struct GlbMaterial {
   double roughness = 0.5;
 };
 
-/// glTF 2.0 binary of the animation: one node, one mesh with one primitive per part (frame 0's
-/// positions and normals), one morph target per later frame (position and normal differences from
-/// frame 0), and an animation of the morph weights: at time t_k − t_0 target k has weight 1 and the
-/// others 0, interpolated linearly (so it plays back frame by frame). Throws InputError for an
-/// invalid animation (geometry::validate_animation) or a mesh whose parts do not use disjoint,
-/// contiguous vertex ranges.
+/// One animated body of a .glb: its mesh frame by frame relative to its pivot, and where the pivot
+/// is in each frame (the root motion).
+struct GlbBody {
+  std::string name;                  ///< node name, e.g. "jellyfish_1"
+  geometry::Mesh first;              ///< frame 0 (positions relative to the pivot, normals, parts)
+  std::vector<std::vector<geometry::Vec3>> positions;  ///< every frame's, relative to the pivot
+  std::vector<geometry::Vec3> root;  ///< per frame; empty: the pivot stays at the origin
+};
+
+/// glTF 2.0 binary. Per body a node (translation animated by the root motion) with a child node
+/// holding its mesh, one primitive per part: frame 0's positions and normals as the base, and a
+/// morph target for every `every`-th later frame and the last, holding position differences only
+/// as normalized shorts (KHR_mesh_quantization; the mesh node's uniform scale S turns them back
+/// into metres, difference = S · value / 32767, S the largest difference). One animation "swim":
+/// the root motion at every frame, and morph weights that are 1 for one target at its frame's
+/// time and 0 for the others (normalized bytes), interpolated linearly between the kept frames.
+/// Renderers keep frame 0's normals (the differences are small next to the bell's curvature).
+/// Throws InputError when times do not increase, frame or root counts do not match the times,
+/// a frame's vertex count differs, or a mesh's parts do not use disjoint, contiguous vertex ranges.
+std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
+                      const std::vector<GlbMaterial>& materials, int every = 1);
+
+/// One body named "jellyfish" that stays at the origin, every frame a morph target.
 std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials);
 
 /// The two chunks of a .glb file (for tests and tools); throws InputError for a malformed file.

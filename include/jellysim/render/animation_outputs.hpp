@@ -44,6 +44,11 @@ struct PipelineSettings {
   /// Point caches for VFX pipelines (caches/NAME.obj rest mesh + NAME.pc2 / NAME.mdd per jellyfish
   /// and for the obstacles) and a USD stage (jellyfish.usda: root motion + time-sampled points).
   bool pc2 = true, mdd = false, usda = false;
+  /// .glb: a morph target every n-th frame (and the last), played back by linear interpolation.
+  int glb_every = 2;
+  /// viewer.html: embed the .glb as base64 (jellyfish.glb.js, opens from file://) instead of
+  /// loading jellyfish.glb beside it (needs a web server: browsers refuse file:// fetches).
+  bool page_embed = false;
   /// The bundled viewer script (three.js + GLTFLoader + controls) copied next to viewer.html.
   std::filesystem::path viewer_script;
 };
