@@ -215,8 +215,23 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
     upload(*mesh);
     glDepthMask(GL_TRUE);
     draw_part(*mesh, "tentacles", kTentacles);
-    glDepthMask(GL_FALSE);  // then the translucent umbrella over them
+    // The tubes are often thinner than a pixel: their edges as lines keep each tentacle a
+    // continuous line instead of a dotted one (the filled tube covers them when it is wider).
+    glDepthFunc(GL_LEQUAL);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    draw_part(*mesh, "tentacles", kTentacles);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDepthFunc(GL_LESS);
+    // Then the translucent umbrella over them without depth writes: its back faces, then its
+    // front faces (a closed shell blends right in that order; in mesh order, far triangles blended
+    // over near ones drew dark saw-teeth along the outline).
+    glDepthMask(GL_FALSE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
     draw_part(*mesh, "umbrella", kUmbrella);
+    glCullFace(GL_BACK);
+    draw_part(*mesh, "umbrella", kUmbrella);
+    glDisable(GL_CULL_FACE);
   }
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);

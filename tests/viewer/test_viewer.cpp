@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -159,6 +161,48 @@ TEST(Viewer, DraggingAnObstacleMovesIt) {
 // view in which a 4 cm box between them must appear. The same scene without the box, paused at
 // t = 0 so that both pictures show the same state, differs from it only where the box is drawn.
 // The framing keeps both jellyfish whole in the tall panel: its side columns show only water.
+// The translucent shell in the 3D panel is one smooth layer: drawn in mesh order, far triangles
+// blended over near ones put dark saw-teeth along its outline (pixels far darker than the rest of
+// their row of the shell). Counted in the built-in scene's first frame, the bell large in the panel:
+// 777 such pixels before the fix, 154 after (the rim's shading), in this 1280 x 720 window.
+TEST(Viewer, TheShellHasNoDarkSawTeethAlongItsOutline) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const auto dir = fresh_scratch_dir("viewer_shell");
+  std::filesystem::create_directories(dir);
+  const auto r = run_viewer_headless("--width 1280 --height 720 --3d-scale 1 --frames 2 --fps 0 --inject \"0 pause\" "
+                                     "--screenshot " + (dir / "shell.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto image = jellysim::render::read_png(dir / "shell.png");
+  ASSERT_EQ(image.width, 1280);
+  const auto brightness = [&](int x, int y) {
+    const auto p = image.at(x, y);
+    return p[0] + p[1] + p[2];
+  };
+  const int water = brightness(480, 5);
+  // Per row of the 3D panel (x in [480, 940)) wide enough to be the bell's: pixels between its
+  // first and last clearly-not-water pixel that are below 70 % of the row's median brightness but
+  // not water seen through the open aperture.
+  int dark = 0, shell_rows = 0;
+  for (int y = 0; y < 720; ++y) {
+    std::vector<int> row;
+    int first = -1, last = -1;
+    for (int x = 480; x < 940; ++x)
+      if (brightness(x, y) > water + 60) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    if (first < 0 || last - first < 40) continue;
+    for (int x = first; x <= last; ++x) row.push_back(brightness(x, y));
+    std::vector<int> sorted = row;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+    const int median = sorted[sorted.size() / 2];
+    ++shell_rows;
+    for (int b : row) dark += (b < 0.7 * median && b > water + 25) ? 1 : 0;
+  }
+  EXPECT_GT(shell_rows, 100) << "the bell should fill a good part of the panel";
+  EXPECT_LT(dark, 300) << "dark saw-teeth along the shell";
+}
+
 TEST(Viewer, ObstaclesAppearAsPrismsInThe3DPanel) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_prisms");
