@@ -15,12 +15,13 @@ namespace {
 
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
-  const SwimOutputOptions options = read_output_options(ctx.config);
+  SwimOutputOptions options = read_output_options(ctx.config);
   if (settings.school.empty())
     throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
                      "of type \"jellyfish\"");
   render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
   pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
+  options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
     write_metrics_csv(out, rec.metrics);
@@ -44,7 +45,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
           if (done == total) std::printf("\n");
           std::fflush(stdout);
         },
-        rec.obstacle_outlines);
+        rec.obstacle_outlines, rec.tracers);
     figures["animation"] = anim.figures();
     write_summary(out, "run", ctx.config, figures, rec.stats.failure);
     return Outcome{rec.stats.failure};

@@ -145,10 +145,11 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
                        const io::OutputDir* out, const sim::ProgressCallback& progress) {
   SwimRecording rec;
   const bool frame_files = out && (options.vtk || options.pictures);
-  // Tracers are drawn in the pictures and written to the VTK files, and nothing else reads them:
-  // without those outputs they are not advected (about 8 % of a default run's time).
+  // Tracers are drawn in the pictures, written to the VTK files and become the animation's marine
+  // snow, and nothing else reads them: without those outputs they are not advected (about 8 % of a
+  // default run's time).
   jellyfish::SwimSettings run_settings = settings;
-  if (!frame_files) run_settings.tank.tracers_per_side = 0;
+  if (!frame_files && !options.record_tracers) run_settings.tank.tracers_per_side = 0;
   jellyfish::SwimSimulation sim(run_settings);
   std::unique_ptr<FrameFiles> files;
   if (frame_files) files = std::make_unique<FrameFiles>(*out, options);
@@ -169,6 +170,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         }
         rec.obstacle_forces.push_back(std::move(forces));
         rec.obstacle_outlines.push_back(std::move(outlines));
+        if (options.record_tracers) rec.tracers.push_back(s.tracers().positions());
         return {};
       },
       progress);

@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "jellysim/geometry/marine_snow.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/geometry/rendering_model.hpp"
 #include "jellysim/core/errors.hpp"
@@ -147,6 +148,11 @@ class CacheRecorder {
       if (obstacle_body_.empty()) obstacle_body_.push_back({"obstacles", {}, {}, {}});
       record(obstacle_body_.front(), obstacles, Vec3{});
     }
+    geometry::Mesh snow = part_mesh(merged, "snow");
+    if (!snow.positions.empty()) {
+      if (snow_body_.empty()) snow_body_.push_back({"marine_snow", {}, {}, {}});
+      record(snow_body_.front(), snow, Vec3{});
+    }
   }
   /// The bodies of the .glb: each jellyfish about its pivot with its root motion, the obstacles
   /// at the origin.
@@ -163,6 +169,7 @@ class CacheRecorder {
       bodies.push_back(std::move(g));
     }
     for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}});
+    for (const Body& b : snow_body_) bodies.push_back({b.name, b.rest, b.frames, {}});
     return bodies;
   }
   void write(const PipelineSettings& s, const std::vector<double>& times, const io::OutputDir& out,
@@ -217,6 +224,7 @@ class CacheRecorder {
   }
   std::vector<Body> bodies_;
   std::vector<Body> obstacle_body_;  ///< empty or one
+  std::vector<Body> snow_body_;      ///< empty or one: in the .glb only (not a body to cache)
 };
 
 std::string base64(const std::string& bytes) {
@@ -269,8 +277,10 @@ constexpr const char* kViewerHtml = R"(<!doctype html>
 </html>
 )";
 
-std::vector<io::GlbMaterial> glb_materials(const RenderStyle& s) {
-  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}, {"obstacles", s.obstacles, 0.9}};
+std::vector<io::GlbMaterial> glb_materials(const PipelineSettings& p) {
+  const RenderStyle& s = p.style;
+  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}, {"obstacles", s.obstacles, 0.9},
+          {"snow", s.snow, 0.6}};
 }
 
 void write_viewer(const PipelineSettings& s, const std::string& glb, const io::OutputDir& out,
@@ -310,6 +320,7 @@ nlohmann::ordered_json AnimationOutputs::figures() const {
   j["renderer"] = renderer;
   j["viewer_has_script"] = viewer_has_script;
   j["bell_screen_travel"] = bell_screen_travel;
+  j["marine_snow_specks"] = marine_snow_specks;
   j["files"] = files;
   return j;
 }
@@ -357,7 +368,7 @@ void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::M
 AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
                                          const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
                                          const io::OutputDir& out, const FrameProgress& progress,
-                                         const ObstacleFrames& obstacles) {
+                                         const ObstacleFrames& obstacles, const std::vector<std::vector<Vec2>>& tracers) {
   if (school.empty() || school.front().empty()) throw InputError("no slice frames to render");
   if (seeds.size() != school.size()) throw InputError("one noise seed per jellyfish is needed");
   const std::vector<jellyfish::SliceFrame>& frames = school.front();
@@ -373,6 +384,20 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       throw InputError(std::string("cannot draw the obstacles: ") + e.what());
     }
   }
+  if (!tracers.empty() && tracers.size() != school.front().size())
+    throw InputError("the marine snow needs one tracer set per recorded frame");
+  std::unique_ptr<geometry::MarineSnow> snow;
+  if (s.marine_snow && !tracers.empty() && !tracers.front().empty()) {
+    // The specks near the path the jellyfish took: its box grown by its own size on every side.
+    const auto [lo, hi] = path_bounds(school);
+    const Vec3 margin = hi - lo;
+    const jellyfish::SliceFrame& first = school.front().front();
+    const double axis_x = 0.5 * (first.umbrella.front().x + first.umbrella.back().x);
+    snow = std::make_unique<geometry::MarineSnow>(tracers.front(), axis_x, std::array<Vec3, 2>{lo - margin, hi + margin},
+                                                  s.snow_size_m);
+  }
+  AnimationOutputs result;
+  result.marine_snow_specks = snow ? snow->count() : 0;
   std::vector<geometry::GeometryBuilder> builders;
   for (std::size_t j = 0; j < school.size(); ++j) {
     geometry::GeometrySettings gs = s.geometry;
@@ -391,7 +416,6 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   const std::optional<io::OutputDir> mesh_dir =
       s.obj || s.ply ? std::optional(out.subdirectory("meshes")) : std::nullopt;
 
-  AnimationOutputs result;
   result.renderer = renderer ? renderer->renderer_name() : "";
   geometry::Animation animation;
   std::unique_ptr<FollowCamera> camera;
@@ -421,6 +445,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
         throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
       }
     }
+    if (snow) snow->append(tracers[k], g.mesh);
     if (caching) caches.add(parts, g.mesh);
     geometry_s += seconds_since(t0);
     if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
@@ -467,7 +492,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   }
   if (caching) caches.write(s, animation.times_s, out, result);
   if (s.glb) {
-    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s.style), s.glb_every);
+    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s), s.glb_every);
     out.write_text("jellyfish.glb", glb);
     result.files.push_back("jellyfish.glb");
     result.glb_bytes = glb.size();

@@ -327,7 +327,7 @@ struct OffscreenRenderer::Impl {
   void set_mesh_uniforms(const Camera& camera, const RenderStyle& style);
   /// Uploads the vertices and the draw order; returns the index ranges (offset, count) of the
   /// tentacles, the umbrella's back faces, its front faces and the obstacles, in index_data.
-  std::array<std::pair<std::size_t, std::size_t>, 4> upload(const geometry::Mesh& mesh, Vec3 eye);
+  std::array<std::pair<std::size_t, std::size_t>, 5> upload(const geometry::Mesh& mesh, Vec3 eye);
   void draw_range(std::pair<std::size_t, std::size_t> range, const std::array<double, 4>& rgba);
 };
 
@@ -534,7 +534,7 @@ void OffscreenRenderer::Impl::draw_background() {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-std::array<std::pair<std::size_t, std::size_t>, 4> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
+std::array<std::pair<std::size_t, std::size_t>, 5> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
                                                                                      Vec3 eye) {
   // Interleaved float position and normal; the vertex shader subtracts the camera target
   // (`origin`) before projecting.
@@ -558,7 +558,7 @@ std::array<std::pair<std::size_t, std::size_t>, 4> OffscreenRenderer::Impl::uplo
   for (const geometry::MeshPart& part : mesh.parts) total += part.index_count;
   index_data.resize(total);
   std::size_t fill = 0;
-  std::array<std::pair<std::size_t, std::size_t>, 4> ranges{};  // tentacles, back, front, obstacles
+  std::array<std::pair<std::size_t, std::size_t>, 5> ranges{};  // tentacles, back, front, obstacles, snow
   const auto copy_part = [&](const char* name) {
     const std::size_t start = fill;
     for (const geometry::MeshPart& part : mesh.parts) {
@@ -569,10 +569,11 @@ std::array<std::pair<std::size_t, std::size_t>, 4> OffscreenRenderer::Impl::uplo
     return std::pair<std::size_t, std::size_t>{start, fill - start};
   };
   ranges[3] = copy_part("obstacles");
+  ranges[4] = copy_part("snow");
   ranges[0] = copy_part("tentacles");
   std::size_t front = index_data.size();  // front faces are collected from the end, then reversed
   for (const geometry::MeshPart& part : mesh.parts) {
-    if (part.name == "tentacles" || part.name == "obstacles") continue;
+    if (part.name == "tentacles" || part.name == "obstacles" || part.name == "snow") continue;
     const std::uint32_t* idx = mesh.indices.data() + part.first_index;
     for (std::uint32_t t = 0; t + 2 < part.index_count; t += 3) {
       const Vec3 a = mesh.positions[idx[t]], b = mesh.positions[idx[t + 1]], c = mesh.positions[idx[t + 2]];
@@ -665,6 +666,7 @@ void OffscreenRenderer::draw(const geometry::Mesh& mesh, const Camera& camera, c
   glDepthMask(GL_TRUE);
   m.draw_range(ranges[3], style.obstacles);
   m.draw_range(ranges[0], style.tentacles);
+  m.draw_range(ranges[4], style.snow);
   glDepthMask(GL_FALSE);
   m.draw_range(ranges[1], style.umbrella);
   m.draw_range(ranges[2], style.umbrella);

@@ -46,6 +46,9 @@ ParameterTable make_render_parameters() {
       boolean("render.viewer", "true", "viewer.html (needs glb)"),
       boolean("render.page_embed", "false",
               "viewer.html embeds the .glb (jellyfish.glb.js, opens from file://); else loads it (serve the folder)"),
+      boolean("render.marine_snow", "true",
+              "the simulation's tracers as specks around the bell's axis: motion reads even with a follow camera"),
+      number("render.snow_size", "0.0003", "m", Range{0.0, 0.01, true, false}, "size of a marine snow speck"),
       boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
       boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
       boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
@@ -132,6 +135,8 @@ render::PipelineSettings read_render_settings(const io::Config& c) {
   s.viewer = r.boolean("render.viewer");
   s.page_embed = r.boolean("render.page_embed");
   s.glb_every = static_cast<int>(r.integer("render.glb_every"));
+  s.marine_snow = r.boolean("render.marine_snow");
+  s.snow_size_m = r.number("render.snow_size");
   s.pc2 = r.boolean("render.pc2");
   s.mdd = r.boolean("render.mdd");
   s.usda = r.boolean("render.usda");

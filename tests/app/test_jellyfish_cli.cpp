@@ -122,6 +122,8 @@ TEST(JellyfishCli, MainJobShowsTheBellSwimAcrossThePicture) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
   EXPECT_GE(s["animation"]["bell_screen_travel"].get<double>(), 0.25);
+  // Marine snow: the tracers near the bell's path as specks (692 of the 1600 measured).
+  EXPECT_NEAR(s["animation"]["marine_snow_specks"].get<int>(), 692, 10);
   EXPECT_NEAR(s["animation"]["bell_screen_travel"].get<double>(), 0.334, 0.01);
   const Result rf = run_cli("run --duration 1 --set render.camera=\"follow\"" + lean + follow.string());
   ASSERT_EQ(rf.exit_code, 0) << rf.output;
@@ -169,7 +171,7 @@ TEST(JellyfishCli, RerunningIntoTheSameOutReplacesTheEarlierRun) {
 TEST(JellyfishCli, RunRendersEveryJellyfishOfTheScene) {
   const fs::path dir = fresh("run_two"), one = fresh("run_one");
   const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
-                            "--set render.viewer=false --out ";
+                            "--set render.viewer=false --set render.marine_snow=false --out ";
   const Result r = run_cli("run " + std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml" + quick + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Result r1 = run_cli("run" + quick + one.string());
@@ -198,7 +200,8 @@ TEST(JellyfishCli, RunDrawsTheSceneObstaclesAsPrisms) {
                           "[[objects]]\ntype = \"box\"\ncentre = [0.18, 0.2]\nsize = [0.04, 0.015]\nangle_deg = 30.0\n"
                           "[[objects]]\ntype = \"circle\"\ncentre = [0.12, 0.25]\nradius = 0.02\n";
   const std::string quick = " --quiet --duration 0.1 --set render.png_frames=false --set render.video=false "
-                            "--set render.viewer=false --set render.obj=true --set render.ply=false --out ";
+                            "--set render.viewer=false --set render.obj=true --set render.ply=false "
+                            "--set render.marine_snow=false --out ";
   const Result r = run_cli("run " + scene.string() + " --set render.usda=true" + quick + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The obstacles get a point cache and a USD prim of their own beside the jellyfish's.

@@ -21,6 +21,7 @@ struct SwimOutputOptions {
   render::FieldQuantity quantity = render::FieldQuantity::vorticity;
   double zoom_diameters = 6.0;  ///< picture width in bell diameters; 0: whole tank
   bool vtk = false;
+  bool record_tracers = false;  ///< keep every frame's tracer positions (the animation's marine snow)
 };
 SwimOutputOptions read_output_options(const io::Config& c);
 
@@ -33,6 +34,7 @@ struct SwimRecording {
   std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
   std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
   std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
+  std::vector<std::vector<Vec2>> tracers;           ///< per frame, when SwimOutputOptions::record_tracers
 };
 
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).

@@ -46,6 +46,9 @@ struct PipelineSettings {
   bool pc2 = true, mdd = false, usda = false;
   /// .glb: a morph target every n-th frame (and the last), played back by linear interpolation.
   int glb_every = 2;
+  /// Marine snow: the simulation's tracers as specks of this size (m) in the 3D picture.
+  bool marine_snow = true;
+  double snow_size_m = 0.0003;
   /// viewer.html: embed the .glb as base64 (jellyfish.glb.js, opens from file://) instead of
   /// loading jellyfish.glb beside it (needs a web server: browsers refuse file:// fetches).
   bool page_embed = false;
@@ -73,6 +76,7 @@ struct AnimationOutputs {
   /// How far the middle of the umbrellas moved on screen from the first frame to the last, in
   /// picture heights.
   double bell_screen_travel = 0.0;
+  std::size_t marine_snow_specks = 0;  ///< tracers drawn as marine snow
   /// Key figures for summary.json.
   nlohmann::ordered_json figures() const;
 };
@@ -92,11 +96,15 @@ using ObstacleFrames = std::vector<std::vector<std::vector<Vec2>>>;
 /// same count), seeds[j] its noise individual. Every frame's meshes are merged into one (all
 /// umbrellas, then all tentacles), so the .glb and meshes hold the whole school and the camera
 /// follows the middle of the umbrellas. `obstacles`, when not empty, holds one entry per frame: the
-/// obstacles become the mesh part "obstacles", prisms `settings.obstacle_depth_m` long.
+/// obstacles become the mesh part "obstacles", prisms `settings.obstacle_depth_m` long. `tracers`,
+/// when not empty, holds each frame's tracer positions: with settings.marine_snow they become the
+/// specks of geometry::MarineSnow (part "snow") around the first jellyfish's axis, those near the
+/// path the jellyfish took.
 AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
                                          const std::vector<std::uint64_t>& seeds, const PipelineSettings& settings,
                                          const io::OutputDir& out, const FrameProgress& progress = {},
-                                         const ObstacleFrames& obstacles = {});
+                                         const ObstacleFrames& obstacles = {},
+                                         const std::vector<std::vector<Vec2>>& tracers = {});
 
 /// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,
 /// structural noise, Perlin noise, compression noise, all noises; columns expanded, contracted.

@@ -39,6 +39,7 @@ struct RenderStyle {
   std::array<double, 4> umbrella{0.78, 0.90, 1.00, 0.35};   ///< RGBA; alpha < 1: translucent
   std::array<double, 4> tentacles{1.00, 0.72, 0.80, 0.75};
   std::array<double, 4> obstacles{0.15, 0.14, 0.13, 1.00};  ///< opaque dark rock (lights and rim brighten it)
+  std::array<double, 4> snow{0.85, 0.92, 0.95, 0.80};       ///< marine snow specks (mesh part "snow")
   double ambient = 0.30;
   double specular = 0.45;
   double shininess = 40.0;
