@@ -181,7 +181,7 @@ void MeshView::draw_part(const geometry::Mesh& mesh, const char* part_name, cons
 }
 
 GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width,
-                      int height, const geometry::Mesh* obstacles) {
+                      int height, const geometry::Mesh* obstacles, const geometry::Mesh* snow) {
   target_.bind(std::max(width, 16), std::max(height, 16));
   glClearColor(0.03f, 0.12f, 0.20f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -206,10 +206,16 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
   static constexpr float kTentacles[4] = {1.00f, 0.72f, 0.80f, 0.9f};
   static constexpr float kUmbrella[4] = {0.78f, 0.90f, 1.00f, 0.55f};
   static constexpr float kObstacles[4] = {0.15f, 0.14f, 0.13f, 1.0f};
+  static constexpr float kSnow[4] = {0.85f, 0.92f, 0.95f, 0.8f};
   if (obstacles != nullptr && !obstacles->positions.empty()) {  // opaque, first, writing depth
     upload(*obstacles);
     glDepthMask(GL_TRUE);
     draw_part(*obstacles, "obstacles", kObstacles);
+  }
+  if (snow != nullptr && !snow->positions.empty()) {  // marine snow specks, writing depth
+    upload(*snow);
+    glDepthMask(GL_TRUE);
+    draw_part(*snow, "snow", kSnow);
   }
   for (const geometry::Mesh* mesh : meshes) {  // opaque-ish tentacles first, with depth writes
     upload(*mesh);

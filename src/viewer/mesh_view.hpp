@@ -26,7 +26,7 @@ class MeshView {
   /// Renders the meshes into a width × height texture (returned) framed to fit all of them, with
   /// `obstacles` (part "obstacles", opaque; not framed) drawn first when given.
   GLuint draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width, int height,
-              const geometry::Mesh* obstacles = nullptr);
+              const geometry::Mesh* obstacles = nullptr, const geometry::Mesh* snow = nullptr);
 
  private:
   void upload(const geometry::Mesh& mesh);

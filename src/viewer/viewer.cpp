@@ -9,6 +9,7 @@
 #include <fstream>
 #include <thread>
 
+#include "jellysim/geometry/marine_snow.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/scene/live_parameters.hpp"
@@ -77,6 +78,7 @@ class Viewer {
   void check_script_parameters() const;
   void rebuild_mesh_builders();
   void rebuild_obstacle_mesh();
+  void rebuild_snow_mesh();
   void frame(double gap_s);
   MouseState scripted_mouse();
   void apply_event(const InputEvent& e);
@@ -126,6 +128,8 @@ class Viewer {
   std::unique_ptr<geometry::ObstaclePrisms> prisms_;  ///< for the current obstacles' outline sizes
   std::vector<std::size_t> prism_points_;
   geometry::Mesh obstacle_mesh_;
+  std::unique_ptr<geometry::MarineSnow> snow_;  ///< the tracers near the jellyfish at the start (or a reset)
+  geometry::Mesh snow_mesh_;
   OrbitCamera camera_;
   ScenePanel scene_;
   std::unique_ptr<Window> window_;
@@ -146,6 +150,30 @@ void Viewer::check_script_parameters() const {
 
 // The obstacles as prisms (geometry/obstacle_mesh.hpp); the caps are triangulated again only when
 // the obstacles or their marker counts change. An outline that cannot be drawn leaves them out.
+// Marine snow (geometry/marine_snow.hpp): the tracers revolved about the first jellyfish's axis,
+// those that start near the jellyfish (their box grown by twice its size on every side).
+void Viewer::rebuild_snow_mesh() {
+  using geometry::Vec3;
+  snow_mesh_ = {};
+  const std::vector<Vec2>& tracers = sim_->tracers().positions();
+  if (tracers.empty() || meshes_.empty()) return;
+  if (!snow_) {
+    const geometry::Bounds b = geometry::bounds(meshes_.front().mesh);
+    Vec3 lo = b.min, hi = b.max;
+    for (const auto& m : meshes_) {
+      const geometry::Bounds bm = geometry::bounds(m.mesh);
+      lo = {std::min(lo.x, bm.min.x), std::min(lo.y, bm.min.y), std::min(lo.z, bm.min.z)};
+      hi = {std::max(hi.x, bm.max.x), std::max(hi.y, bm.max.y), std::max(hi.z, bm.max.z)};
+    }
+    const Vec3 margin = 2.0 * (hi - lo);
+    const jellyfish::SliceFrame first = sim_->jellyfish(0).slice_frame(sim_->time_s());
+    const double axis_x = 0.5 * (first.umbrella.front().x + first.umbrella.back().x);
+    snow_ = std::make_unique<geometry::MarineSnow>(tracers, axis_x, std::array<Vec3, 2>{lo - margin, hi + margin},
+                                                   0.0003);
+  }
+  snow_->append(tracers, snow_mesh_);
+}
+
 void Viewer::rebuild_obstacle_mesh() {
   std::vector<std::vector<Vec2>> outlines;
   std::vector<std::size_t> points;
@@ -278,6 +306,7 @@ void Viewer::single_step() {
 void Viewer::reset() {
   sim_ = std::make_unique<jellyfish::SwimSimulation>(settings_);
   apply_all(params_, *sim_);
+  snow_.reset();
   failure_.clear();
   pacer_.reset_debt();
   meshes_dirty_ = true;
@@ -412,6 +441,7 @@ void Viewer::draw_views() {
       meshes_.push_back(builders_[i].build(sim_->jellyfish(i).slice_frame(sim_->time_s())));
     }
     rebuild_obstacle_mesh();
+    rebuild_snow_mesh();
     meshes_dirty_ = false;
   }
   const double t2 = wall_now();
@@ -424,7 +454,7 @@ void Viewer::draw_views() {
   const float fb_scale = io.DisplayFramebufferScale.x;
   const double scale = fb_scale * options_.render_scale;
   const GLuint texture = mesh_view_->draw(meshes, camera_, static_cast<int>(panel_w * scale),
-                                          static_cast<int>(panel_h * scale), &obstacle_mesh_);
+                                          static_cast<int>(panel_h * scale), &obstacle_mesh_, &snow_mesh_);
   ImGui::GetBackgroundDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture)),
                                            ImVec2(static_cast<float>(panel_w), 0),
                                            ImVec2(static_cast<float>(area_w), static_cast<float>(panel_h)),
