@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/render/image.hpp"
 
 namespace jellysim::render {
 namespace {
@@ -106,13 +108,21 @@ std::string range_caption(FieldQuantity q, double range_max) {
   return text;
 }
 
-void draw_panel(plstream& pls, const FieldPicture& panel, const FieldPictureOptions& options) {
+/// The colour range's upper end: the option's, or the field's largest magnitude.
+double colour_range(const fluid::Field& f, const FieldPictureOptions& options) {
+  return options.colour_range_max > 0.0 ? options.colour_range_max : std::max(f.max_abs_interior(), 1e-12);
+}
+
+const fluid::FlowState& state_of(const FieldPicture& panel) {
   if (!panel.state) throw std::invalid_argument("field picture without a flow state");
-  const fluid::FlowState& s = *panel.state;
+  return *panel.state;
+}
+
+void draw_panel(plstream& pls, const FieldPicture& panel, const FieldPictureOptions& options) {
+  const fluid::FlowState& s = state_of(panel);
   const fluid::MacGrid& g = s.grid;
   const fluid::Field f = quantity_field(s, options.quantity);
-  double range_max = options.colour_range_max;
-  if (range_max <= 0.0) range_max = std::max(f.max_abs_interior(), 1e-12);
+  const double range_max = colour_range(f, options);
   pls.col0(1);
   if (panel.view_m) {
     const auto& v = *panel.view_m;
@@ -152,9 +162,133 @@ void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns
   for (const FieldPicture& p : panels) draw_panel(pls, p, options);
 }
 
+namespace {
+
+/// The colour maps of set_colour_map, for our own rasteriser: t in [0, 1].
+Rgb colour_at(FieldQuantity q, double t) {
+  static const std::vector<std::array<double, 4>> speed{
+      {0.0, 0.07, 0.04, 0.30}, {0.35, 0.13, 0.45, 0.56}, {0.7, 0.45, 0.78, 0.37}, {1.0, 0.99, 0.91, 0.15}};
+  static const std::vector<std::array<double, 4>> vorticity{
+      {0.0, 0.15, 0.30, 0.75}, {0.5, 1.0, 1.0, 1.0}, {1.0, 0.75, 0.10, 0.12}};
+  const auto& map = q == FieldQuantity::speed ? speed : vorticity;
+  t = std::clamp(t, 0.0, 1.0);
+  std::size_t k = 1;
+  while (k + 1 < map.size() && t > map[k][0]) ++k;
+  const double f = (t - map[k - 1][0]) / (map[k][0] - map[k - 1][0]);
+  Rgb c;
+  for (std::size_t i = 0; i < 3; ++i)
+    c[i] = static_cast<std::uint8_t>(std::lround(255.0 * (map[k - 1][i + 1] + f * (map[k][i + 1] - map[k - 1][i + 1]))));
+  return c;
+}
+
+/// Tick positions at 1, 2 or 5 times a power of ten, about five across [lo, hi].
+std::vector<double> ticks(double lo, double hi) {
+  const double raw = (hi - lo) / 5.0;
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  const double step = raw / p < 1.5 ? p : raw / p < 3.5 ? 2 * p : raw / p < 7.5 ? 5 * p : 10 * p;
+  std::vector<double> t;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) t.push_back(std::abs(v) < 1e-12 * step ? 0.0 : v);
+  return t;
+}
+
+std::string tick_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+RgbImage draw_field_picture(const FieldPicture& panel, const FieldPictureOptions& options) {
+  const fluid::FlowState& s = state_of(panel);
+  const fluid::MacGrid& g = s.grid;
+  const fluid::Field f = quantity_field(s, options.quantity);
+  const double range_max = colour_range(f, options);
+  const std::array<Vec2, 2> view = panel.view_m ? *panel.view_m
+                                                : std::array<Vec2, 2>{g.origin_m, g.origin_m + Vec2{g.width_m, g.height_m}};
+  const int size = options.panel_px, text = size >= 400 ? 2 : 1;
+  const int left = 34 * text, bottom = 26 * text, top = 26 * text, right = 8 * text;
+  // The plot area keeps the view's aspect ratio, centred in what the margins leave.
+  const double view_w = view[1].x - view[0].x, view_h = view[1].y - view[0].y;
+  const double px_per_m = std::min((size - left - right) / view_w, (size - top - bottom) / view_h);
+  const int plot_w = static_cast<int>(view_w * px_per_m), plot_h = static_cast<int>(view_h * px_per_m);
+  const int x0 = left + (size - left - right - plot_w) / 2, y0 = top + (size - top - bottom - plot_h) / 2;
+  const Rgb ink{20, 20, 20};
+  RgbImage image(size, size, Rgb{255, 255, 255});
+  RgbImage plot(plot_w, plot_h, Rgb{255, 255, 255});
+  const auto to_px = [&](Vec2 p) { return Vec2{(p.x - view[0].x) * px_per_m, (view[1].y - p.y) * px_per_m}; };
+  // The field: each pixel takes its cell's value (cell centres are the field's samples).
+  const double lo = options.quantity == FieldQuantity::speed ? 0.0 : -range_max;
+  for (int py = 0; py < plot_h; ++py)
+    for (int px = 0; px < plot_w; ++px) {
+      const Vec2 w{view[0].x + (px + 0.5) / px_per_m, view[1].y - (py + 0.5) / px_per_m};
+      const int i = static_cast<int>(std::floor((w.x - g.origin_m.x) / g.dx()));
+      const int j = static_cast<int>(std::floor((w.y - g.origin_m.y) / g.dy()));
+      if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
+      plot.set(px, py, colour_at(options.quantity, (f(i, j) - lo) / (range_max - lo)));
+    }
+  if (options.arrows) {
+    const double spacing = std::max(g.width_m, g.height_m) / std::max(options.arrows_per_side, 1);
+    const int nx = std::max(1, static_cast<int>(std::round(g.width_m / spacing)));
+    const int ny = std::max(1, static_cast<int>(std::round(g.height_m / spacing)));
+    double v_max = 0.0;
+    std::vector<std::array<Vec2, 2>> arrows;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const Vec2 p = g.world_from_grid((i + 0.5) * g.nx / nx, (j + 0.5) * g.ny / ny);
+        const Vec2 v = s.velocity.sample(p);
+        v_max = std::max(v_max, norm(v));
+        arrows.push_back({p, v});
+      }
+    if (v_max > 0.0)
+      for (const auto& [p, v] : arrows) {
+        const Vec2 d = (0.9 * spacing / v_max) * v;  // the fastest arrow spans 90 % of the spacing
+        if (norm(d) < 1e-12) continue;
+        const Vec2 a = to_px(p), tip = to_px(p + d), h1 = to_px(p + d - 0.3 * d + 0.15 * perp(d)),
+                   h2 = to_px(p + d - 0.3 * d - 0.15 * perp(d));
+        draw_segment(plot, a.x, a.y, tip.x, tip.y, 1.0, ink);
+        draw_segment(plot, tip.x, tip.y, h1.x, h1.y, 1.0, ink);
+        draw_segment(plot, tip.x, tip.y, h2.x, h2.y, 1.0, ink);
+      }
+  }
+  for (Vec2 p : panel.tracers_m) {
+    const Vec2 q = to_px(p);
+    draw_disc(plot, q.x, q.y, 1.2, Rgb{230, 30, 160});
+  }
+  for (const auto& seg : panel.thin_segments_m) {
+    const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
+    draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, Rgb{30, 110, 240});
+  }
+  for (const auto& seg : panel.segments_m) {
+    const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
+    draw_segment(plot, a.x, a.y, b.x, b.y, 2.5, ink);
+  }
+  paste(image, plot, x0, y0);
+  // Frame, ticks and labels.
+  draw_segment(image, x0, y0, x0 + plot_w, y0, 1.0, ink);
+  draw_segment(image, x0, y0 + plot_h, x0 + plot_w, y0 + plot_h, 1.0, ink);
+  draw_segment(image, x0, y0, x0, y0 + plot_h, 1.0, ink);
+  draw_segment(image, x0 + plot_w, y0, x0 + plot_w, y0 + plot_h, 1.0, ink);
+  for (double v : ticks(view[0].x, view[1].x)) {
+    const double x = x0 + (v - view[0].x) * px_per_m;
+    draw_segment(image, x, y0 + plot_h, x, y0 + plot_h - 4 * text, 1.0, ink);
+    draw_text(image, static_cast<int>(x) - 6 * text, y0 + plot_h + 3 * text, tick_text(v), text, ink);
+  }
+  for (double v : ticks(view[0].y, view[1].y)) {
+    const double y = y0 + (view[1].y - v) * px_per_m;
+    draw_segment(image, x0, y, x0 + 4 * text, y, 1.0, ink);
+    draw_text(image, std::max(0, x0 - static_cast<int>(tick_text(v).size()) * 5 * text - 3 * text),
+              static_cast<int>(y) - 3 * text, tick_text(v), text, ink);
+  }
+  draw_text(image, x0 + plot_w / 2 - 15 * text, y0 + plot_h + 13 * text, "x (m)", text, ink);
+  draw_text(image, 2, y0 - 11 * text, "y (m)", text, ink);
+  draw_text(image, x0, 3 * text, panel.caption + "  [" + range_caption(options.quantity, range_max) + "]", text, ink);
+  return image;
+}
+
 void write_field_png(const FieldPicture& picture, const FieldPictureOptions& options,
                      const std::filesystem::path& png_path) {
-  write_field_panels_png({picture}, 1, options, png_path);
+  write_png(draw_field_picture(picture, options), png_path);
 }
 
 }  // namespace jellysim::render

@@ -44,5 +44,36 @@ TEST(FieldPicture, WritesAPngFile) {
   EXPECT_GT(std::filesystem::file_size(png), 1000u);
 }
 
+// One picture by our own rasteriser: the field's colours where the flow is, the segments in ink,
+// the tracers in magenta, inside a square picture of the asked size.
+TEST(FieldPicture, DrawsFieldSegmentsAndTracers) {
+  const fluid::FlowState s = vortex_state(16);
+  render::FieldPicture p;
+  p.state = &s;
+  p.caption = "vortex";
+  p.tracers_m = {{0.5, 0.5}};
+  p.segments_m = {{Vec2{0.2, 1.5}, Vec2{1.8, 1.5}}};
+  render::FieldPictureOptions options;
+  options.quantity = render::FieldQuantity::vorticity;
+  options.arrows = false;
+  options.panel_px = 400;
+  const render::RgbImage image = render::draw_field_picture(p, options);
+  ASSERT_EQ(image.width, 400);
+  ASSERT_EQ(image.height, 400);
+  int ink = 0, magenta = 0, red = 0, blue = 0;
+  for (int y = 0; y < 400; ++y)
+    for (int x = 0; x < 400; ++x) {
+      const auto c = image.at(x, y);
+      ink += c[0] < 40 && c[1] < 40 && c[2] < 40 ? 1 : 0;
+      magenta += c[0] > 200 && c[1] < 80 && c[2] > 120 ? 1 : 0;
+      red += c[0] > 150 && c[1] < 60 && c[2] < 60 ? 1 : 0;  // positive vorticity
+      blue += c[2] > 150 && c[0] < 80 ? 1 : 0;              // negative vorticity
+    }
+  EXPECT_GT(ink, 300);  // frame, ticks, text and the 2.5 px segment across the plot
+  EXPECT_GT(magenta, 3);
+  EXPECT_GT(red, 1000);  // a Taylor-Green vortex array: both signs over large areas
+  EXPECT_GT(blue, 1000);
+}
+
 }  // namespace
 }  // namespace jellysim

@@ -1,6 +1,7 @@
 #pragma once
 // PNG pictures of grid-fluid fields for a person to look at: speed or vorticity as a colour image
-// with velocity arrows and tracer particles on top (PLplot, pngcairo device). Output code only.
+// with velocity arrows and tracer particles on top; one picture by our own rasteriser, several
+// panels side by side with PLplot (pngcairo device). Output code only.
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "jellysim/fluid/grid.hpp"
+#include "jellysim/render/image.hpp"
 
 namespace jellysim::render {
 
@@ -34,7 +36,9 @@ struct FieldPictureOptions {
   int panel_px = 480;
 };
 
-/// One picture of one flow.
+/// One picture of one flow, drawn by our own rasteriser (render/image.hpp): the per-frame pictures
+/// of a run, where PLplot's per-picture font set-up (pango, fontconfig) took most of the time.
+RgbImage draw_field_picture(const FieldPicture& picture, const FieldPictureOptions& options);
 void write_field_png(const FieldPicture& picture, const FieldPictureOptions& options,
                      const std::filesystem::path& png_path);
 /// Several flows side by side, `columns` per row (e.g. thesis Figure 8.7).
