@@ -63,8 +63,12 @@ export async function start(options) {
   });
   scene.add(model);
 
-  // Frame the whole animation: the bounds of the first frame, widened by the swimming distance.
-  const box = new THREE.Box3().setFromObject(model);
+  // Frame the jellyfish (not the marine snow around them) in the first frame.
+  const box = new THREE.Box3();
+  model.traverse((o) => {
+    if (o.isMesh && o.name.startsWith("jellyfish")) box.expandByObject(o);
+  });
+  if (box.isEmpty()) box.setFromObject(model);
   const size = box.getSize(new THREE.Vector3()).length();
   const centre = box.getCenter(new THREE.Vector3());
   camera.position.copy(centre).add(new THREE.Vector3(0.4, 0.25, 1.0).normalize().multiplyScalar(1.6 * size));
@@ -73,6 +77,57 @@ export async function start(options) {
   camera.updateProjectionMatrix();
   controls.target.copy(centre);
   controls.update();
+
+  // The .glb's morph targets move positions only (normals would double its size): recompute each
+  // mesh's normals from its morphed positions whenever the morph weights change.
+  const morphed = [];
+  model.traverse((o) => {
+    if (o.isMesh && o.morphTargetInfluences && o.geometry.morphAttributes.position) morphed.push(o);
+  });
+  const updateNormals = (mesh) => {
+    const g = mesh.geometry;
+    const base = g.attributes.position;
+    const targets = g.morphAttributes.position;
+    const w = mesh.morphTargetInfluences;
+    const key = w.join(",");
+    if (mesh.userData.normalsFor === key) return;
+    mesh.userData.normalsFor = key;
+    const n = base.count;
+    const p = new Float32Array(3 * n);
+    for (let v = 0; v < n; ++v) {
+      p[3 * v] = base.getX(v);
+      p[3 * v + 1] = base.getY(v);
+      p[3 * v + 2] = base.getZ(v);
+    }
+    for (let k = 0; k < targets.length; ++k) {
+      if (w[k] === 0) continue;
+      const t = targets[k];
+      for (let v = 0; v < n; ++v) {
+        p[3 * v] += w[k] * t.getX(v);
+        p[3 * v + 1] += w[k] * t.getY(v);
+        p[3 * v + 2] += w[k] * t.getZ(v);
+      }
+    }
+    const normal = g.attributes.normal;
+    const acc = new Float32Array(3 * n);
+    const index = g.index.array;
+    for (let i = 0; i < index.length; i += 3) {
+      const a = 3 * index[i], b = 3 * index[i + 1], c = 3 * index[i + 2];
+      const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+      const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+      const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+      for (const j of [a, b, c]) {
+        acc[j] += nx;
+        acc[j + 1] += ny;
+        acc[j + 2] += nz;
+      }
+    }
+    for (let v = 0; v < n; ++v) {
+      const len = Math.hypot(acc[3 * v], acc[3 * v + 1], acc[3 * v + 2]) || 1;
+      normal.setXYZ(v, acc[3 * v] / len, acc[3 * v + 1] / len, acc[3 * v + 2] / len);
+    }
+    normal.needsUpdate = true;
+  };
 
   const mixer = new THREE.AnimationMixer(model);
   for (const clip of gltf.animations) mixer.clipAction(clip).play();
@@ -89,6 +144,7 @@ export async function start(options) {
   renderer.setAnimationLoop(() => {
     const dt = clock.getDelta();
     if (!paused) mixer.update(dt);
+    for (const mesh of morphed) updateNormals(mesh);
     controls.update();
     renderer.render(scene, camera);
   });

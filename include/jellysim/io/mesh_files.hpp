@@ -44,7 +44,7 @@ struct GlbBody {
 /// into metres, difference = S · value / 32767, S the largest difference). One animation "swim":
 /// the root motion at every frame, and morph weights that are 1 for one target at its frame's
 /// time and 0 for the others (normalized bytes), interpolated linearly between the kept frames.
-/// Renderers keep frame 0's normals (the differences are small next to the bell's curvature).
+/// The normals are frame 0's; jellysim's HTML viewer recomputes them from the morphed positions.
 /// Throws InputError when times do not increase, frame or root counts do not match the times,
 /// a frame's vertex count differs, or a mesh's parts do not use disjoint, contiguous vertex ranges.
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
