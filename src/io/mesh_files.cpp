@@ -344,7 +344,11 @@ std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<doub
       channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", mesh_node - 1}, {"path", "translation"}}}});
     }
   }
-  nlohmann::json json = {{"asset", {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}}},
+  // The frame rate and count, for tools that set a scene up from the file (blender_import.py).
+  nlohmann::json asset = {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}};
+  asset["extras"] = {{"frame_count", frames}};
+  if (frames > 1) asset["extras"]["frames_per_second"] = static_cast<double>(frames - 1) / (times_s.back() - times_s.front());
+  nlohmann::json json = {{"asset", asset},
                          {"scene", 0},
                          {"scenes", {{{"nodes", scene_nodes}}}},
                          {"nodes", nodes},

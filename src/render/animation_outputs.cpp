@@ -277,6 +277,36 @@ constexpr const char* kViewerHtml = R"(<!doctype html>
 </html>
 )";
 
+// Written beside jellyfish.glb: sets Blender's scene to the simulation's frame rate and range
+// (from the .glb's asset extras) and imports it.
+constexpr const char* kBlenderImport = R"py(# Opens jellysim's animation in Blender with the simulation's frame rate and frame range (glTF has
+# no place for them, so jellysim writes them into jellyfish.glb's asset extras and this script
+# sets the scene from there before importing):
+#   blender --python blender_import.py          (or Scripting > Open > Run in a running Blender)
+import json
+import os
+import struct
+
+import bpy
+
+here = os.path.dirname(os.path.abspath(__file__))
+path = os.path.join(here, "jellyfish.glb")
+with open(path, "rb") as f:
+    f.read(12)
+    length, _ = struct.unpack("<II", f.read(8))
+    extras = json.loads(f.read(length))["asset"].get("extras", {})
+fps = extras.get("frames_per_second", 30.0)
+frames = int(extras.get("frame_count", 1))
+scene = bpy.context.scene
+scene.render.fps = max(1, round(fps))
+scene.render.fps_base = scene.render.fps / fps
+bpy.ops.import_scene.gltf(filepath=path, import_shading="SMOOTH")
+# The importer puts the first sample at frame 0 when the scene starts there.
+scene.frame_start = 0
+scene.frame_end = frames - 1
+print(f"jellysim: {frames} frames at {fps:g} fps (scene {scene.frame_start}-{scene.frame_end})")
+)py";
+
 std::vector<io::GlbMaterial> glb_materials(const PipelineSettings& p) {
   const RenderStyle& s = p.style;
   return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}, {"obstacles", s.obstacles, 0.9},
@@ -494,7 +524,8 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   if (s.glb) {
     const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s), s.glb_every);
     out.write_text("jellyfish.glb", glb);
-    result.files.push_back("jellyfish.glb");
+    out.write_text("blender_import.py", kBlenderImport);
+    result.files.insert(result.files.end(), {"jellyfish.glb", "blender_import.py"});
     result.glb_bytes = glb.size();
     if (s.viewer) write_viewer(s, glb, out, result);
   }

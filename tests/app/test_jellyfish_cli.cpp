@@ -109,6 +109,11 @@ TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
   EXPECT_EQ(s["command"], "run");
   EXPECT_EQ(s["animation"]["frames"].get<int>(), 7);
+  // The frame rate and count travel in the .glb for blender_import.py (glTF has no field for them).
+  const auto glb = jellysim::io::parse_glb(slurp(dir / "jellyfish.glb"));
+  EXPECT_NEAR(glb.json["asset"]["extras"]["frames_per_second"].get<double>(), 30.0, 1e-9);
+  EXPECT_EQ(glb.json["asset"]["extras"]["frame_count"].get<int>(), 7);
+  EXPECT_NE(slurp(dir / "blender_import.py").find("frames_per_second"), std::string::npos);
   fs::remove_all(dir);
 }
 
