@@ -33,8 +33,12 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::optional<double> duration;
   bool quiet = false;
-  /// Shorthands for top-level keys some experiments have (e.g. driven-cavity): --solver, --re, --grid.
-  std::vector<std::pair<std::string, std::string>> shorthands;
+  /// Options that set a key some experiments have (e.g. driven-cavity): --solver, --re, --grid,
+  /// --steady-tolerance: (option, key, value).
+  struct Shorthand {
+    std::string option, key, value;
+  };
+  std::vector<Shorthand> shorthands;
 };
 
 /// `set_example` is a working example of --set for this command (the test
@@ -80,8 +84,8 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
     if (!ctx.config.has("duration")) throw js::InputError("--duration: experiment '" + e.name + "' has no duration");
     ctx.config.set("duration=" + js::io::format_double(*o.duration));
   }
-  for (const auto& [key, value] : o.shorthands) {
-    if (!ctx.config.has(key)) throw js::InputError("--" + key + ": experiment '" + e.name + "' has no " + key);
+  for (const auto& [option, key, value] : o.shorthands) {
+    if (!ctx.config.has(key)) throw js::InputError("--" + option + ": experiment '" + e.name + "' has no " + key);
     ctx.config.set(key + "=" + value);
   }
   auto run = e.prepare(ctx);
@@ -267,6 +271,9 @@ int main(int argc, char** argv) {
   exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
   exp->add_option("--re", re, "Reynolds number (driven-cavity)");
   exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
+  std::string steady_tolerance;
+  exp->add_option("--steady-tolerance", steady_tolerance,
+                  "Stop when max|du/dt| L/U^2 falls below this (driven-cavity: cavity.steady_tolerance)");
   int threads = 0;
   exp->add_option("--threads", threads, "Threads for the SPH experiments (run.threads; default: one per core)")
       ->check(CLI::Range(1, 64));
@@ -307,10 +314,12 @@ int main(int argc, char** argv) {
     }
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
-      for (auto [key, value] : {std::pair{"solver", solver}, {"re", re}, {"grid", grid}}) {
-        if (!value.empty()) exp_opts.shorthands.emplace_back(key, value);
+      for (const RunOptions::Shorthand& s : {RunOptions::Shorthand{"solver", "solver", solver}, {"re", "re", re},
+                                             {"grid", "grid", grid},
+                                             {"steady-tolerance", "cavity.steady_tolerance", steady_tolerance}}) {
+        if (!s.value.empty()) exp_opts.shorthands.push_back(s);
       }
-      if (threads > 0) exp_opts.shorthands.emplace_back("run.threads", std::to_string(threads));
+      if (threads > 0) exp_opts.shorthands.push_back({"threads", "run.threads", std::to_string(threads)});
       return run_experiment(js::experiments::find_experiment(exp_name), std::nullopt, exp_opts);
     }
     if (reference) {

@@ -5,6 +5,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/field_picture.hpp"
+#include "jellysim/render/plot.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -86,13 +87,16 @@ void write_figure_8_7(const io::OutputDir& out, const std::vector<studies::Cavit
                       [&](const auto& p) { render::write_field_panels_png(pictures, columns, options, p); });
 }
 
-nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r) {
+nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r, double tolerance) {
   nlohmann::ordered_json j;
   j["simulated_seconds"] = r.simulated_time_s;
   j["wall_seconds"] = r.wall_time_s;
   j["steps"] = r.steps;
   j["steady"] = r.steady;
   j["final_change_rate"] = r.final_change_rate;
+  j["steady_tolerance"] = tolerance;
+  // Which ended the run: the change rate fell below the tolerance, or the time limit came first.
+  j["stopped_by"] = r.steady ? "steady_tolerance" : "max_time";
   j["viscosity"] = r.viscosity_m2_per_s;
   j["max_divergence_per_s"] = r.max_divergence_per_s;
   if (r.ghia) {
@@ -101,6 +105,29 @@ nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r) {
   }
   j["messages"] = r.messages;
   return j;
+}
+
+/// convergence.csv (t, change_rate: max|Δu|/Δt · L/U² after each step) and convergence.png.
+void write_convergence(const io::OutputDir& out, const studies::DrivenCavityResult& r, double tolerance) {
+  io::CsvWriter csv({"t", "change_rate"});
+  render::Series rate{"change rate max|du|/dt L/U^2", {}, {}};
+  for (const auto& [t, c] : r.history) {
+    csv.row({t, c});
+    rate.x.push_back(t);
+    rate.y.push_back(c);
+  }
+  out.write_text("convergence.csv", csv.text());
+  render::ChartSpec chart;
+  chart.title = "Driven cavity: convergence to a steady state";
+  chart.x_label = "t";
+  chart.x_unit = "s";
+  chart.y_label = "change rate";
+  chart.log_y = true;
+  chart.series.push_back(std::move(rate));
+  if (tolerance > 0.0 && !r.history.empty())
+    chart.series.push_back({"steady tolerance", {r.history.front()[0], r.history.back()[0]}, {tolerance, tolerance},
+                            false, true, true});
+  write_via_temporary(out, "convergence.png", [&](const auto& p) { render::write_chart_png(chart, p); });
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context& ctx) {
@@ -117,10 +144,11 @@ std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context
     write_profile_csv(out, "centerline_u.csv", "y", "u", r.centreline_u);
     write_profile_csv(out, "centerline_v.csv", "x", "v", r.centreline_v);
     if (r.ghia) write_ghia_csv(out, *r.ghia);
+    write_convergence(out, r, cavity.steady_tolerance);
     write_pictures(out, r, scene.cavity.solver + ", Re = " + io::format_double(scene.cavity.reynolds));
     if (scene.figure_enabled) write_figure_8_7(out, studies::run_cavity_figure_8_7(scene.figure));
     // Not reaching a steady state is reported (summary "steady": false), not treated as a failure.
-    write_summary(out, "driven-cavity", ctx.config, key_figures(r), "");
+    write_summary(out, "driven-cavity", ctx.config, key_figures(r, cavity.steady_tolerance), "");
     return Outcome{};
   };
 }

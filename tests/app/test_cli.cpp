@@ -215,7 +215,28 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   EXPECT_LT(summary["ghia_max_abs_v_error"].get<double>(), 0.1);
   EXPECT_EQ(run_cli("experiment driven-cavity --quiet --solver rk4 --out " + dir.string() + "_bad").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir.string() + "_bad"));
+  // At 16² the flow does not settle below the default tolerance (1e-5) by the time limit, and the
+  // summary says so; with --steady-tolerance 1e-2 it stops when the change rate falls below it,
+  // and convergence.csv's history ends there.
+  EXPECT_FALSE(summary["steady"].get<bool>());
+  EXPECT_EQ(summary["stopped_by"], "max_time");
+  EXPECT_GE(summary["final_change_rate"].get<double>(), summary["steady_tolerance"].get<double>());
+  EXPECT_TRUE(fs::exists(dir / "convergence.png"));
+  const fs::path loose = fresh_dir("cavity_loose");
+  ASSERT_EQ(run_cli("experiment driven-cavity --quiet --grid 16 --steady-tolerance 1e-2 --set figure_8_7.enabled=false "
+                    "--out " + loose.string()).exit_code, 0);
+  const auto stopped = summary_of(loose);
+  EXPECT_TRUE(stopped["steady"].get<bool>());
+  EXPECT_EQ(stopped["stopped_by"], "steady_tolerance");
+  EXPECT_LT(stopped["final_change_rate"].get<double>(), 1e-2);
+  EXPECT_LT(stopped["simulated_seconds"].get<double>(), 10.0);  // 4.28 s measured
+  const std::string history = read_file(loose / "convergence.csv");
+  EXPECT_EQ(history.substr(0, 14), "t,change_rate\n");
+  const std::string last = history.substr(history.rfind('\n', history.size() - 2) + 1);
+  EXPECT_DOUBLE_EQ(std::stod(last.substr(last.find(',') + 1)), stopped["final_change_rate"].get<double>());
+  EXPECT_EQ(run_cli("experiment taylor-green --quiet --steady-tolerance 1e-3 --out " + loose.string() + "_bad").exit_code, 2);
   fs::remove_all(dir);
+  fs::remove_all(loose);
 }
 
 TEST(Cli, TaylorGreenMeasuresSpatialOrderOfBothSolvers) {

@@ -2,6 +2,7 @@
 // Driven-cavity experiments of thesis §8.1.3: a unit square of fluid whose top side moves with
 // speed U (in-flow tangential to the side, i.e. a moving no-slip lid), the other sides no-slip.
 // Library functions only: the CLI, CSV, summary.json and pictures are written by the caller.
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -27,7 +28,8 @@ struct DrivenCavitySettings {
   std::optional<double> donor_cell_blend{};  ///< γ; unset: smallest stable (Eulerian)
   bool project_before_advection = false;     ///< semi-Lagrangian §4.2.4
   double max_time_s = 60.0;                  ///< stop here if not steady before
-  /// Steady when max|u(t+Δt) − u(t)| / Δt < tolerance · U²/L.
+  /// Steady when max|u(t+Δt) − u(t)| / Δt < tolerance · U²/L (the change per unit time, relative
+  /// to the lid's scale); 0: run to max_time_s.
   double steady_tolerance = 1e-5;
   /// Marker particles on a tracers_per_side² lattice, carried by the flow (Figures 8.11/8.12).
   int tracers_per_side = 0;
@@ -60,6 +62,9 @@ struct DrivenCavityResult {
   int steps = 0;           ///< solver sub-steps taken
   bool steady = false;
   double final_change_rate = 0.0;  ///< max|Δu|/Δt · L/U² at the end
+  /// The convergence history: after each step of at least half the regular size (shorter ones,
+  /// landing on a frame or the end, measure round-off), its time and change rate.
+  std::vector<std::array<double, 2>> history;
   double max_divergence_per_s = 0.0;
   double wall_time_s = 0.0;
   std::vector<std::string> messages;  ///< e.g. Δt reductions (first few)
