@@ -45,12 +45,24 @@ struct RunOptions {
 /// Cli.EverySetExampleInTheHelpRuns runs each one).
 void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out, const std::string& set_example) {
   o.out = default_out;
-  cmd.add_option("--out", o.out, "Directory for the results (created if missing)")->capture_default_str();
+  cmd.add_option("--out", o.out, "Directory for the results (created if missing)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& dir) -> std::string {
+            if (dir.empty()) return "the directory name is empty";
+            if (dir.front() == '-') return "'" + dir + "' looks like an option: give the directory after --out";
+            return {};
+          },
+          "DIR", "output directory"));
   cmd.add_option("--set", o.sets,
                  "Override a parameter: --set key=value (dotted keys, e.g. " + set_example +
                      "). Repeatable. `jellysim scenes NAME` lists every key.")
       ->type_name("KEY=VALUE");
-  cmd.add_option("--duration", o.duration, "Simulated seconds (same as --set duration=S)")->type_name("S");
+  cmd.add_option("--duration", o.duration, "Simulated seconds (same as --set duration=S)")
+      ->type_name("S")
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string { return value.empty() ? "the duration is empty" : std::string(); },
+          "S", "duration"));
   cmd.add_flag("--quiet", o.quiet, "No progress display");
 }
 

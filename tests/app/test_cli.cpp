@@ -73,6 +73,18 @@ TEST(Cli, ScenesPrintsTheCommandsScenesUnderTheirNames) {
 TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run_cli("").exit_code, 2);
   EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+  // An empty --duration once ran the whole default; an option after --out became a directory.
+  for (const char* args : {"simulate --duration '' --quiet --out /tmp/jellysim_cli_never", "simulate --out ''",
+                           "simulate --out --quiet", "run --out -x"}) {
+    const Result r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(std::string(args).find("--duration") != std::string::npos ? "--duration" : "--out"),
+              std::string::npos)
+        << r.output;
+  }
+  EXPECT_FALSE(fs::exists("/tmp/jellysim_cli_never"));
+  EXPECT_FALSE(fs::exists("--quiet"));
+  EXPECT_FALSE(fs::exists("-x"));
   const Result r = run_cli("experiment no-such-thing --out " + fresh_dir("unknown").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("swinging-bar"), std::string::npos) << r.output;  // lists known names
