@@ -13,6 +13,13 @@ const MeshPart* Mesh::part(std::string_view name) const {
   return nullptr;
 }
 
+VertexRange vertex_range(const Mesh& mesh, const MeshPart& part) {
+  if (part.index_count == 0) throw InputError("mesh part '" + part.name + "' has no triangles");
+  const auto begin = mesh.indices.begin() + part.first_index;
+  const auto [lo, hi] = std::minmax_element(begin, begin + part.index_count);
+  return {*lo, *hi - *lo + 1};
+}
+
 bool same_topology(const Mesh& a, const Mesh& b) {
   if (a.positions.size() != b.positions.size() || a.normals.size() != b.normals.size() || a.indices != b.indices ||
       a.parts.size() != b.parts.size())

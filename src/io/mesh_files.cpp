@@ -36,16 +36,8 @@ void append_vec(std::string& out, const char* tag, Vec3 v) {
 }
 
 /// The vertex range [first, first + count) a part's triangles use.
-struct VertexRange {
-  std::uint32_t first = 0, count = 0;
-};
-
-VertexRange vertex_range(const Mesh& mesh, const MeshPart& part) {
-  if (part.index_count == 0) throw InputError("mesh part '" + part.name + "' has no triangles");
-  const auto begin = mesh.indices.begin() + part.first_index;
-  const auto [lo, hi] = std::minmax_element(begin, begin + part.index_count);
-  return {*lo, *hi - *lo + 1};
-}
+using geometry::VertexRange;
+using geometry::vertex_range;
 
 }  // namespace
 
@@ -259,7 +251,7 @@ double largest_difference(const GlbBody& body, const std::vector<std::size_t>& k
 }  // namespace
 
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
-                      const std::vector<GlbMaterial>& materials, int every) {
+                      const std::vector<GlbMaterial>& materials, int every, double frames_per_second) {
   if (bodies.empty() || times_s.empty()) throw InputError("glb: no bodies or no frames");
   if (every < 1) throw InputError("glb: every must be at least 1");
   for (const GlbBody& body : bodies) {
@@ -347,7 +339,7 @@ std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<doub
   // The frame rate and count, for tools that set a scene up from the file (blender_import.py).
   nlohmann::json asset = {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}};
   asset["extras"] = {{"frame_count", frames}};
-  if (frames > 1) asset["extras"]["frames_per_second"] = static_cast<double>(frames - 1) / (times_s.back() - times_s.front());
+  if (frames_per_second > 0.0) asset["extras"]["frames_per_second"] = frames_per_second;
   nlohmann::json json = {{"asset", asset},
                          {"scene", 0},
                          {"scenes", {{{"nodes", scene_nodes}}}},

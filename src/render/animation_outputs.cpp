@@ -116,21 +116,24 @@ Camera path_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school
   return camera_looking_at(0.5 * (lo + hi), view_direction(s), distance, s.fov_y_deg);
 }
 
-/// The vertices part `name` of `mesh` uses (a contiguous block) as a mesh of its own, or an empty mesh.
+/// Appends part `name` of `mesh` (its block of vertices and its triangles) to `out`'s vertices and
+/// indices; returns the number of indices appended (0 when the mesh has no such part).
+std::uint32_t append_part(const geometry::Mesh& mesh, const std::string& name, geometry::Mesh& out) {
+  const geometry::MeshPart* part = mesh.part(name);
+  if (part == nullptr || part->index_count == 0) return 0;
+  const geometry::VertexRange r = geometry::vertex_range(mesh, *part);
+  const auto offset = static_cast<std::uint32_t>(out.positions.size());
+  out.positions.insert(out.positions.end(), mesh.positions.begin() + r.first, mesh.positions.begin() + r.first + r.count);
+  out.normals.insert(out.normals.end(), mesh.normals.begin() + r.first, mesh.normals.begin() + r.first + r.count);
+  for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k)
+    out.indices.push_back(mesh.indices[k] - r.first + offset);
+  return part->index_count;
+}
+
+/// Part `name` of `mesh` as a mesh of its own, or an empty mesh.
 geometry::Mesh part_mesh(const geometry::Mesh& mesh, const std::string& name) {
   geometry::Mesh sub;
-  const geometry::MeshPart* part = mesh.part(name);
-  if (part == nullptr || part->index_count == 0) return sub;
-  std::uint32_t lo = UINT32_MAX, hi = 0;
-  for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k) {
-    lo = std::min(lo, mesh.indices[k]);
-    hi = std::max(hi, mesh.indices[k]);
-  }
-  sub.positions.assign(mesh.positions.begin() + lo, mesh.positions.begin() + hi + 1);
-  sub.normals.assign(mesh.normals.begin() + lo, mesh.normals.begin() + hi + 1);
-  for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k)
-    sub.indices.push_back(mesh.indices[k] - lo);
-  sub.parts.push_back({name, 0, part->index_count});
+  if (const std::uint32_t count = append_part(mesh, name, sub); count > 0) sub.parts.push_back({name, 0, count});
   return sub;
 }
 
@@ -373,21 +376,7 @@ void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::M
   merged.parts.clear();
   for (const char* name : {"umbrella", "tentacles"}) {
     const auto first_index = static_cast<std::uint32_t>(merged.indices.size());
-    for (const geometry::FrameGeometry& g : parts) {
-      const geometry::MeshPart* part = g.mesh.part(name);
-      if (part == nullptr) continue;
-      // Copy the vertices this part uses (a contiguous block in each jellyfish's mesh).
-      std::uint32_t lo = UINT32_MAX, hi = 0;
-      for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k) {
-        lo = std::min(lo, g.mesh.indices[k]);
-        hi = std::max(hi, g.mesh.indices[k]);
-      }
-      const auto offset = static_cast<std::uint32_t>(merged.positions.size());
-      merged.positions.insert(merged.positions.end(), g.mesh.positions.begin() + lo, g.mesh.positions.begin() + hi + 1);
-      merged.normals.insert(merged.normals.end(), g.mesh.normals.begin() + lo, g.mesh.normals.begin() + hi + 1);
-      for (std::uint32_t k = part->first_index; k < part->first_index + part->index_count; ++k)
-        merged.indices.push_back(g.mesh.indices[k] - lo + offset);
-    }
+    for (const geometry::FrameGeometry& g : parts) append_part(g.mesh, name, merged);
     const auto count = static_cast<std::uint32_t>(merged.indices.size()) - first_index;
     if (count > 0) merged.parts.push_back({name, first_index, count});
   }
@@ -522,7 +511,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   }
   if (caching) caches.write(s, animation.times_s, out, result);
   if (s.glb) {
-    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s), s.glb_every);
+    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s), s.glb_every, s.fps);
     out.write_text("jellyfish.glb", glb);
     out.write_text("blender_import.py", kBlenderImport);
     result.files.insert(result.files.end(), {"jellyfish.glb", "blender_import.py"});

@@ -49,35 +49,40 @@ void draw_image(plstream& pls, const fluid::Field& f, FieldQuantity q, double ra
   pls.imagefr(rows.data(), g.nx, g.ny, x0, x1, y0, y1, lo, range_max, lo, range_max, nullptr, nullptr);
 }
 
-void draw_arrows(plstream& pls, const fluid::FlowState& s, int per_side) {
+/// The velocity arrows: points on a lattice of about `per_side` along the longer side, each with
+/// its velocity scaled so that the fastest arrow spans 90 % of the spacing (none at rest).
+std::vector<std::array<Vec2, 2>> arrow_lattice(const fluid::FlowState& s, int per_side) {
   const fluid::MacGrid& g = s.grid;
   const double spacing = std::max(g.width_m, g.height_m) / std::max(per_side, 1);
   const int nx = std::max(1, static_cast<int>(std::round(g.width_m / spacing)));
   const int ny = std::max(1, static_cast<int>(std::round(g.height_m / spacing)));
+  std::vector<std::array<Vec2, 2>> arrows;
   double v_max = 0.0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const Vec2 p = g.world_from_grid((i + 0.5) * g.nx / nx, (j + 0.5) * g.ny / ny);
-      v_max = std::max(v_max, norm(s.velocity.sample(p)));
+      const Vec2 v = s.velocity.sample(p);
+      v_max = std::max(v_max, norm(v));
+      arrows.push_back({p, v});
     }
-  if (v_max <= 0.0) return;
-  const double scale = 0.9 * spacing / v_max;  // the fastest arrow spans 90 % of the spacing
+  if (v_max <= 0.0) return {};
+  for (auto& a : arrows) a[1] = (0.9 * spacing / v_max) * a[1];
+  return arrows;
+}
+
+/// An arrow from p along d as three segments: the shaft and two barbs.
+std::array<std::array<Vec2, 2>, 3> arrow_segments(Vec2 p, Vec2 d) {
+  const Vec2 tip = p + d, back = -0.3 * d, side = 0.15 * perp(d);
+  return {{{p, tip}, {tip, tip + back + side}, {tip, tip + back - side}}};
+}
+
+void draw_arrows(plstream& pls, const fluid::FlowState& s, int per_side) {
   pls.col0(1);
   pls.width(1.0);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const Vec2 p = g.world_from_grid((i + 0.5) * g.nx / nx, (j + 0.5) * g.ny / ny);
-      const Vec2 d = scale * s.velocity.sample(p);
-      const Vec2 tip = p + d;
-      pls.join(p.x, p.y, tip.x, tip.y);
-      const double len = norm(d);
-      if (len < 1e-12) continue;
-      const Vec2 back = -0.3 * d;
-      const Vec2 side = 0.15 * perp(d);
-      const Vec2 a = tip + back + side, b = tip + back - side;
-      pls.join(tip.x, tip.y, a.x, a.y);
-      pls.join(tip.x, tip.y, b.x, b.y);
-    }
+  for (const auto& [p, d] : arrow_lattice(s, per_side)) {
+    if (norm(d) < 1e-12) continue;
+    for (const auto& seg : arrow_segments(p, d)) pls.join(seg[0].x, seg[0].y, seg[1].x, seg[1].y);
+  }
 }
 
 void draw_tracers(plstream& pls, const std::vector<Vec2>& tracers) {
@@ -227,30 +232,14 @@ RgbImage draw_field_picture(const FieldPicture& panel, const FieldPictureOptions
       if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
       plot.set(px, py, colour_at(options.quantity, (f(i, j) - lo) / (range_max - lo)));
     }
-  if (options.arrows) {
-    const double spacing = std::max(g.width_m, g.height_m) / std::max(options.arrows_per_side, 1);
-    const int nx = std::max(1, static_cast<int>(std::round(g.width_m / spacing)));
-    const int ny = std::max(1, static_cast<int>(std::round(g.height_m / spacing)));
-    double v_max = 0.0;
-    std::vector<std::array<Vec2, 2>> arrows;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const Vec2 p = g.world_from_grid((i + 0.5) * g.nx / nx, (j + 0.5) * g.ny / ny);
-        const Vec2 v = s.velocity.sample(p);
-        v_max = std::max(v_max, norm(v));
-        arrows.push_back({p, v});
+  if (options.arrows)
+    for (const auto& [p, d] : arrow_lattice(s, options.arrows_per_side)) {
+      if (norm(d) < 1e-12) continue;
+      for (const auto& seg : arrow_segments(p, d)) {
+        const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
+        draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, ink);
       }
-    if (v_max > 0.0)
-      for (const auto& [p, v] : arrows) {
-        const Vec2 d = (0.9 * spacing / v_max) * v;  // the fastest arrow spans 90 % of the spacing
-        if (norm(d) < 1e-12) continue;
-        const Vec2 a = to_px(p), tip = to_px(p + d), h1 = to_px(p + d - 0.3 * d + 0.15 * perp(d)),
-                   h2 = to_px(p + d - 0.3 * d - 0.15 * perp(d));
-        draw_segment(plot, a.x, a.y, tip.x, tip.y, 1.0, ink);
-        draw_segment(plot, tip.x, tip.y, h1.x, h1.y, 1.0, ink);
-        draw_segment(plot, tip.x, tip.y, h2.x, h2.y, 1.0, ink);
-      }
-  }
+    }
   for (Vec2 p : panel.tracers_m) {
     const Vec2 q = to_px(p);
     draw_disc(plot, q.x, q.y, 1.2, Rgb{230, 30, 160});

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "../flow_fixtures.hpp"
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/reference_data.hpp"
 #include "jellysim/fluid/tracers.hpp"
@@ -13,12 +14,7 @@
 namespace jellysim {
 namespace {
 
-fluid::FlowState vortex_state(int n) {
-  fluid::FlowState s(fluid::MacGrid(n, n, 2.0, 2.0));
-  s.velocity = fluid::TaylorGreen{2.0, 1.0, 0.0}.sample(s.grid, 0.0);
-  fluid::apply_velocity_boundaries(s.velocity, fluid::Boundaries::all(fluid::BoundaryType::free_slip));
-  return s;
-}
+using testing::vortex_state;
 
 TEST(FieldPicture, WritesAPngFile) {
   const fluid::FlowState s = vortex_state(16);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../flow_fixtures.hpp"
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/diagnostics.hpp"
 #include "jellysim/fluid/reference_data.hpp"
@@ -19,12 +20,7 @@
 namespace jellysim::io {
 namespace {
 
-fluid::FlowState vortex_state(int n) {
-  fluid::FlowState s(fluid::MacGrid(n, n, 2.0, 2.0));
-  s.velocity = fluid::TaylorGreen{2.0, 1.0, 0.0}.sample(s.grid, 0.0);
-  fluid::apply_velocity_boundaries(s.velocity, fluid::Boundaries::all(fluid::BoundaryType::free_slip));
-  return s;
-}
+using testing::vortex_state;
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;

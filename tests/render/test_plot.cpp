@@ -1,8 +1,10 @@
 // Charts: axes in the unit that fits the data, so tick labels need no exponent in a corner.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 
+#include "jellysim/render/image.hpp"
 #include "jellysim/render/plot.hpp"
 
 namespace jellysim::render {
@@ -32,7 +34,24 @@ TEST(Plot, WritesAChartWithTheLegendOutsideTheData) {
   c.series.push_back({"bell", {0.0, 1.0, 2.0}, {0.0, 0.01, 0.028}});
   const auto png = std::filesystem::temp_directory_path() / "jellysim_test_chart.png";
   write_chart_png(c, png);
-  EXPECT_GT(std::filesystem::file_size(png), 1000u);
+  // The series' colour (0, 114, 178) appears in the plot area (its line; the area ends 79.5 % down
+  // the picture with one series) and otherwise only in the legend's sample, below the x axis's
+  // labels (the bottom 15 % of the picture).
+  const RgbImage image = read_png(png);
+  int in_plot = 0, below = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb p = image.at(x, y);
+      if (std::abs(p[0] - 0) + std::abs(p[1] - 114) + std::abs(p[2] - 178) > 30) continue;
+      if (y < 0.8 * image.height) {
+        ++in_plot;
+      } else {
+        ++below;
+        EXPECT_GT(y, 0.85 * image.height) << "a sample of the legend between the plot area and its axis labels";
+      }
+    }
+  EXPECT_GT(in_plot, 100);
+  EXPECT_GT(below, 5);
   std::filesystem::remove(png);
 }
 

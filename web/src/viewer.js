@@ -93,7 +93,10 @@ export async function start(options) {
     if (mesh.userData.normalsFor === key) return;
     mesh.userData.normalsFor = key;
     const n = base.count;
-    const p = new Float32Array(3 * n);
+    // Scratch arrays kept with the mesh: this runs every frame.
+    if (!mesh.userData.morphScratch) mesh.userData.morphScratch = [new Float32Array(3 * n), new Float32Array(3 * n)];
+    const [p, acc] = mesh.userData.morphScratch;
+    acc.fill(0);
     for (let v = 0; v < n; ++v) {
       p[3 * v] = base.getX(v);
       p[3 * v + 1] = base.getY(v);
@@ -109,7 +112,6 @@ export async function start(options) {
       }
     }
     const normal = g.attributes.normal;
-    const acc = new Float32Array(3 * n);
     const index = g.index.array;
     for (let i = 0; i < index.length; i += 3) {
       const a = 3 * index[i], b = 3 * index[i + 1], c = 3 * index[i + 2];

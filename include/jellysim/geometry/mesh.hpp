@@ -29,6 +29,13 @@ struct Mesh {
   const MeshPart* part(std::string_view name) const;
 };
 
+/// The block of vertices a part's triangles use: first vertex and count. The meshes built here
+/// keep each part's vertices contiguous. Throws InputError for a part without triangles.
+struct VertexRange {
+  std::uint32_t first = 0, count = 0;
+};
+VertexRange vertex_range(const Mesh& mesh, const MeshPart& part);
+
 /// Same vertex count, same index list and same parts: frames of one animation.
 bool same_topology(const Mesh& a, const Mesh& b);
 

@@ -47,8 +47,10 @@ struct GlbBody {
 /// The normals are frame 0's; jellysim's HTML viewer recomputes them from the morphed positions.
 /// Throws InputError when times do not increase, frame or root counts do not match the times,
 /// a frame's vertex count differs, or a mesh's parts do not use disjoint, contiguous vertex ranges.
+/// `frames_per_second` > 0 is written into asset.extras with the frame count (glTF has no field
+/// for them) for tools that set a scene up from the file (blender_import.py).
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
-                      const std::vector<GlbMaterial>& materials, int every = 1);
+                      const std::vector<GlbMaterial>& materials, int every = 1, double frames_per_second = 0.0);
 
 /// One body named "jellyfish" that stays at the origin, every frame a morph target.
 std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials);
