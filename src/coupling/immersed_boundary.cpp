@@ -199,7 +199,7 @@ void ImmersedBoundary::mask_target_forces(std::span<Vec2> force) const {
 double ImmersedBoundary::next_time_step() const {
   const fluid::FluidSettings& fs = fluid_.settings();
   double dt = fluid::stability_time_step(fluid_.state().velocity, fs.viscosity_m2_per_s, settings_.safety_factor,
-                                         &fs.boundaries);
+                                         fs.convection, &fs.boundaries);
   // The markers move with the fluid, but their interpolated speed can exceed the face maxima of the
   // last step; include it in the CFL limit of eq. 4.8.
   const fluid::MacGrid& g = fluid_.state().grid;

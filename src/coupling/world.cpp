@@ -49,6 +49,8 @@ std::unique_ptr<fluid::FluidSolver> World::make_fluid(bool east_half) const {
     fs.boundaries.west = {fluid::BoundaryType::free_slip, {}};
     if (tank_.boundaries.periodic_x()) fs.boundaries.east = {fluid::BoundaryType::free_slip, {}};
   }
+  fs.convection = tank_.convection;
+  fs.advection = tank_.advection;
   fs.pressure_solver = tank_.pressure_solver;
   fs.pressure.relative_tolerance = tank_.pressure_tolerance;
   fs.diffusion_tolerance = std::min(fs.diffusion_tolerance, tank_.pressure_tolerance);

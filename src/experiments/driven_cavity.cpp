@@ -24,12 +24,12 @@ void write_profile_csv(const io::OutputDir& out, const std::string& name, const 
 
 void write_ghia_csv(const io::OutputDir& out, const studies::GhiaComparison& g) {
   io::CsvWriter csv({"profile", "position", "reference", "computed", "difference"});
-  for (std::size_t i = 0; i < fluid::kGhiaRe100CentrelineU.size(); ++i) {
-    const auto& r = fluid::kGhiaRe100CentrelineU[i];
+  for (std::size_t i = 0; i < g.reference_u.size(); ++i) {
+    const auto& r = g.reference_u[i];
     csv.row("u", {r.position, r.velocity, r.velocity + g.u_error[i], g.u_error[i]});
   }
-  for (std::size_t i = 0; i < fluid::kGhiaRe100CentrelineV.size(); ++i) {
-    const auto& r = fluid::kGhiaRe100CentrelineV[i];
+  for (std::size_t i = 0; i < g.reference_v.size(); ++i) {
+    const auto& r = g.reference_v[i];
     csv.row("v", {r.position, r.velocity, r.velocity + g.v_error[i], g.v_error[i]});
   }
   out.write_text("ghia_comparison.csv", csv.text());
@@ -99,9 +99,17 @@ nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r, double 
   j["stopped_by"] = r.steady ? "steady_tolerance" : "max_time";
   j["viscosity"] = r.viscosity_m2_per_s;
   j["max_divergence_per_s"] = r.max_divergence_per_s;
+  // The primary vortex: the stream function's minimum (ψ = 0 on the walls, ψ < 0 for the
+  // clockwise vortex), and Ghia et al.'s Table V where they tabulate this Re.
+  j["vortex_centre_x"] = r.primary_vortex.centre_m.x;
+  j["vortex_centre_y"] = r.primary_vortex.centre_m.y;
+  j["psi_min"] = r.primary_vortex.stream_function_m2_per_s;
   if (r.ghia) {
     j["ghia_max_abs_u_error"] = r.ghia->max_abs_u_error;
     j["ghia_max_abs_v_error"] = r.ghia->max_abs_v_error;
+    j["ghia_vortex_centre_x"] = r.ghia->reference_vortex.x;
+    j["ghia_vortex_centre_y"] = r.ghia->reference_vortex.y;
+    j["ghia_psi_min"] = r.ghia->reference_vortex.stream_function;
   }
   j["messages"] = r.messages;
   return j;

@@ -23,8 +23,8 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 
 void write_taylor_green(const io::OutputDir& out, const studies::TaylorGreenResult& r,
                         const studies::TaylorGreenSettings& s) {
-  io::CsvWriter runs({"solver", "cells", "dx", "dt", "steps", "error_l2", "error_max"});
-  io::CsvWriter orders({"solver", "coarse_cells", "fine_cells", "order_l2", "order_max"});
+  io::CsvWriter runs({"solver", "scheme", "cells", "dx", "dt", "steps", "error_l2", "error_max"});
+  io::CsvWriter orders({"solver", "scheme", "coarse_cells", "fine_cells", "order_l2", "order_max"});
   render::ChartSpec chart;
   chart.title = "Taylor-Green vortex: velocity error at t = " + io::format_double(s.end_time_s) + " s";
   chart.x_label = "grid spacing dx";
@@ -32,23 +32,25 @@ void write_taylor_green(const io::OutputDir& out, const studies::TaylorGreenResu
   chart.y_label = "RMS velocity error";
   chart.y_unit = "m/s";
   chart.log_x = chart.log_y = true;
-  for (const std::string& solver : s.solvers) {
-    render::Series series;
-    series.label = solver + " (order " + io::format_double(std::round(r.fitted_order_l2(solver) * 100) / 100) + ")";
-    series.markers = true;
-    for (const auto& run : r.runs) {
-      if (run.solver != solver) continue;
-      const double dx = s.flow.length_m / run.cells;
-      runs.row(solver, {static_cast<double>(run.cells), dx, run.dt_s, static_cast<double>(run.steps), run.error_l2,
-                        run.error_max});
-      series.x.push_back(dx);
-      series.y.push_back(run.error_l2);
+  for (const std::string& solver : s.solvers)
+    for (const std::string& scheme : studies::schemes_of(s, solver)) {
+      render::Series series;
+      const double order = r.fitted_order_l2(solver, scheme);
+      series.label = solver + " " + scheme + " (order " + io::format_double(std::round(order * 100) / 100) + ")";
+      series.markers = true;
+      for (const auto& run : r.runs) {
+        if (run.solver != solver || run.scheme != scheme) continue;
+        const double dx = s.flow.length_m / run.cells;
+        runs.row({solver, scheme}, {static_cast<double>(run.cells), dx, run.dt_s, static_cast<double>(run.steps),
+                                    run.error_l2, run.error_max});
+        series.x.push_back(dx);
+        series.y.push_back(run.error_l2);
+      }
+      chart.series.push_back(std::move(series));
     }
-    chart.series.push_back(std::move(series));
-  }
   for (const auto& o : r.orders) {
-    orders.row(o.solver, {static_cast<double>(o.coarse_cells), static_cast<double>(o.fine_cells), o.order_l2,
-                          o.order_max});
+    orders.row({o.solver, o.scheme}, {static_cast<double>(o.coarse_cells), static_cast<double>(o.fine_cells),
+                                      o.order_l2, o.order_max});
   }
   out.write_text("taylor_green.csv", runs.text());
   out.write_text("orders.csv", orders.text());
@@ -63,7 +65,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context&
     nlohmann::ordered_json figures, fitted;
     double wall = 0.0;
     for (const auto& run : r.runs) wall += run.wall_time_s;
-    for (const std::string& solver : settings.solvers) fitted[solver] = r.fitted_order_l2(solver);
+    for (const std::string& solver : settings.solvers)
+      for (const std::string& scheme : studies::schemes_of(settings, solver))
+        fitted[solver][scheme] = r.fitted_order_l2(solver, scheme);
     figures["wall_seconds"] = wall;
     figures["measured_orders_l2"] = fitted;
     write_summary(out, "taylor-green", ctx.config, figures, "");

@@ -22,6 +22,15 @@ Field vorticity_at_centres(const Velocity& vel) {
   return c;
 }
 
+Field stream_function_at_nodes(const Velocity& vel) {
+  const MacGrid& g = vel.u.grid();
+  Field psi(g, kNodes);
+  for (int i = 0; i < g.nx; ++i) psi(i + 1, 0) = psi(i, 0) - vel.v(i, 0) * g.dx();
+  for (int j = 0; j < g.ny; ++j)  // row by row: each column's sum, in the same order
+    for (int i = 0; i <= g.nx; ++i) psi(i, j + 1) = psi(i, j) + vel.u(i, j) * g.dy();
+  return psi;
+}
+
 Vec2 velocity_at_centre(const Velocity& vel, int i, int j) {
   return {0.5 * (vel.u(i, j) + vel.u(i + 1, j)), 0.5 * (vel.v(i, j) + vel.v(i, j + 1))};
 }

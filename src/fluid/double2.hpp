@@ -19,6 +19,7 @@ inline void store2(double* p, Double2 v) { __builtin_memcpy(p, &v, sizeof v); }
 inline Double2 abs2(Double2 x) { return x < 0.0 ? -x : x; }
 /// max(m, x) per lane (NaN is not reliably propagated: callers that care test for it apart).
 inline Double2 max2(Double2 m, Double2 x) { return m > x ? m : x; }
+inline Double2 min2(Double2 m, Double2 x) { return m < x ? m : x; }
 
 /// Sum with four partial sums (two lanes × two accumulators), combined in a fixed order.
 struct Sum4 {

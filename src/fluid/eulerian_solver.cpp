@@ -22,7 +22,99 @@ inline double blended_flux(double carrier, double q_minus, double q_plus, double
   return carrier * 0.5 * (q_minus + q_plus) + gamma * std::abs(carrier) * 0.5 * (q_minus - q_plus);
 }
 
+// Reads a face field where a limited flux's stencil reaches one sample beyond the stored ghosts:
+// wraps along a periodic axis (period = cells), otherwise repeats the outermost stored sample,
+// which makes the face value first-order upwind there.
+class StencilReader {
+ public:
+  StencilReader(const Field& f, const Boundaries& b)
+      : f_(f), period_x_(b.periodic_x() ? f.grid().nx : 0), period_y_(b.periodic_y() ? f.grid().ny : 0) {}
+  double operator()(int i, int j) const {
+    if (i < -1 || i > f_.count_x()) i = period_x_ ? wrap(i, period_x_) : std::clamp(i, -1, f_.count_x());
+    if (j < -1 || j > f_.count_y()) j = period_y_ ? wrap(j, period_y_) : std::clamp(j, -1, f_.count_y());
+    return f_(i, j);
+  }
+
+ private:
+  static int wrap(int i, int n) { return ((i % n) + n) % n; }
+  const Field& f_;
+  int period_x_, period_y_;
+};
+
+// Limited value on the face between the upwind sample `up` and the downwind one `down`, with
+// `far` one further upwind: up + ½ψ(r)(down − up), r = (up − far)/(down − up) (Hundsdorfer &
+// Verwer 2003, §III.1). ψ = 0 where the data have an extremum (r ≤ 0): first-order upwind.
+template <ConvectionScheme S>
+inline double limited_face_value(double far, double up, double down) {
+  const double num = up - far;
+  const double den = down - up;
+  if (!(num * den > 0.0)) return up;
+  if constexpr (S == ConvectionScheme::van_leer) {
+    return up + num * den / (num + den);  // ½ψ(r)·den with ψ(r) = 2r/(1 + r)
+  } else {
+    const double r = num / den;  // Koren: ψ(r) = max(0, min(2r, (1 + 2r)/3, 2))
+    return up + 0.5 * std::min({2.0 * r, (1.0 + 2.0 * r) / 3.0, 2.0}) * den;
+  }
+}
+
+// Flux carrier·q through a face between samples q_minus and q_plus (q_far_minus before q_minus,
+// q_far_plus after q_plus), q taken from the upwind side.
+template <ConvectionScheme S>
+inline double limited_flux(double carrier, double q_far_minus, double q_minus, double q_plus, double q_far_plus) {
+  return carrier >= 0.0 ? carrier * limited_face_value<S>(q_far_minus, q_minus, q_plus)
+                        : carrier * limited_face_value<S>(q_far_plus, q_plus, q_minus);
+}
+
+// ∂(u²)/∂x + ∂(uv)/∂y at the x-face (i, j) with limited face values of u (same carriers as
+// convection_u).
+template <ConvectionScheme S>
+double limited_convection_u(const Velocity& vel, const StencilReader& u, int i, int j) {
+  const Field& v = vel.v;
+  const MacGrid& g = v.grid();
+  const double c = u(i, j);
+  const double east = limited_flux<S>(0.5 * (c + u(i + 1, j)), u(i - 1, j), c, u(i + 1, j), u(i + 2, j));
+  const double west = limited_flux<S>(0.5 * (u(i - 1, j) + c), u(i - 2, j), u(i - 1, j), c, u(i + 1, j));
+  const double north =
+      limited_flux<S>(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j - 1), c, u(i, j + 1), u(i, j + 2));
+  const double south = limited_flux<S>(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 2), u(i, j - 1), c, u(i, j + 1));
+  return (east - west) / g.dx() + (north - south) / g.dy();
+}
+
+// ∂(uv)/∂x + ∂(v²)/∂y at the y-face (i, j) with limited face values of v.
+template <ConvectionScheme S>
+double limited_convection_v(const Velocity& vel, const StencilReader& v, int i, int j) {
+  const Field& u = vel.u;
+  const MacGrid& g = u.grid();
+  const double c = v(i, j);
+  const double east =
+      limited_flux<S>(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i - 1, j), c, v(i + 1, j), v(i + 2, j));
+  const double west = limited_flux<S>(0.5 * (u(i, j - 1) + u(i, j)), v(i - 2, j), v(i - 1, j), c, v(i + 1, j));
+  const double north = limited_flux<S>(0.5 * (c + v(i, j + 1)), v(i, j - 1), c, v(i, j + 1), v(i, j + 2));
+  const double south = limited_flux<S>(0.5 * (v(i, j - 1) + c), v(i, j - 2), v(i, j - 1), c, v(i, j + 1));
+  return (east - west) / g.dx() + (north - south) / g.dy();
+}
+
 }  // namespace
+
+double convection_u_limited(const Velocity& vel, const Boundaries& b, int i, int j, ConvectionScheme scheme) {
+  const StencilReader u(vel.u, b);
+  switch (scheme) {
+    case ConvectionScheme::van_leer: return limited_convection_u<ConvectionScheme::van_leer>(vel, u, i, j);
+    case ConvectionScheme::koren: return limited_convection_u<ConvectionScheme::koren>(vel, u, i, j);
+    case ConvectionScheme::donor_cell: break;
+  }
+  return convection_u(vel, i, j, 1.0);
+}
+
+double convection_v_limited(const Velocity& vel, const Boundaries& b, int i, int j, ConvectionScheme scheme) {
+  const StencilReader v(vel.v, b);
+  switch (scheme) {
+    case ConvectionScheme::van_leer: return limited_convection_v<ConvectionScheme::van_leer>(vel, v, i, j);
+    case ConvectionScheme::koren: return limited_convection_v<ConvectionScheme::koren>(vel, v, i, j);
+    case ConvectionScheme::donor_cell: break;
+  }
+  return convection_v(vel, i, j, 1.0);
+}
 
 double convection_u(const Velocity& vel, int i, int j, double gamma) {
   const Field& u = vel.u;
@@ -51,7 +143,7 @@ EulerianSolver::EulerianSolver(const MacGrid& grid, const FluidSettings& setting
 
 double EulerianSolver::stable_time_step() const {
   return stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor,
-                             &settings_.boundaries);
+                             settings_.convection, &settings_.boundaries);
 }
 
 double EulerianSolver::donor_cell_blend(double dt_s) const {
@@ -62,7 +154,8 @@ double EulerianSolver::donor_cell_blend(double dt_s) const {
   return std::min(1.0, courant);
 }
 
-void EulerianSolver::compute_predictor(double dt_s, double gamma) {
+template <class ConvectionU, class ConvectionV>
+void EulerianSolver::compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at) {
   const Velocity& vel = state_.velocity;
   const double nu = settings_.viscosity_m2_per_s;
   const Vec2 gravity = settings_.gravity_m_per_s2;
@@ -70,19 +163,41 @@ void EulerianSolver::compute_predictor(double dt_s, double gamma) {
   const FaceRange ru = interior_u_faces(state_.grid, settings_.boundaries);
   for (int j = ru.j_begin; j < ru.j_end; ++j)
     for (int i = ru.i_begin; i < ru.i_end; ++i)
-      predictor_.u(i, j) = vel.u(i, j) + dt_s * (nu * face_laplacian(vel.u, i, j) - convection_u(vel, i, j, gamma) +
+      predictor_.u(i, j) = vel.u(i, j) + dt_s * (nu * face_laplacian(vel.u, i, j) - convection_u_at(i, j) +
                                                  gravity.x + body_acceleration_.u(i, j));
   const FaceRange rv = interior_v_faces(state_.grid, settings_.boundaries);
   for (int j = rv.j_begin; j < rv.j_end; ++j)
     for (int i = rv.i_begin; i < rv.i_end; ++i)
-      predictor_.v(i, j) = vel.v(i, j) + dt_s * (nu * face_laplacian(vel.v, i, j) - convection_v(vel, i, j, gamma) +
+      predictor_.v(i, j) = vel.v(i, j) + dt_s * (nu * face_laplacian(vel.v, i, j) - convection_v_at(i, j) +
                                                  gravity.y + body_acceleration_.v(i, j));
   apply_velocity_boundaries(predictor_, settings_.boundaries);
 }
 
+template <ConvectionScheme S>
+void EulerianSolver::compute_limited_predictor(double dt_s) {
+  const Velocity& vel = state_.velocity;
+  const StencilReader u(vel.u, settings_.boundaries);
+  const StencilReader v(vel.v, settings_.boundaries);
+  compute_predictor_with(
+      dt_s, [&](int i, int j) { return limited_convection_u<S>(vel, u, i, j); },
+      [&](int i, int j) { return limited_convection_v<S>(vel, v, i, j); });
+}
+
+void EulerianSolver::compute_predictor(double dt_s, double gamma) {
+  const Velocity& vel = state_.velocity;
+  switch (settings_.convection) {
+    case ConvectionScheme::van_leer: return compute_limited_predictor<ConvectionScheme::van_leer>(dt_s);
+    case ConvectionScheme::koren: return compute_limited_predictor<ConvectionScheme::koren>(dt_s);
+    case ConvectionScheme::donor_cell:
+      return compute_predictor_with(
+          dt_s, [&](int i, int j) { return convection_u(vel, i, j, gamma); },
+          [&](int i, int j) { return convection_v(vel, i, j, gamma); });
+  }
+}
+
 PressureSolveReport EulerianSolver::single_step(double dt_s) {
   apply_velocity_boundaries(state_.velocity, settings_.boundaries);
-  last_gamma_ = donor_cell_blend(dt_s);
+  last_gamma_ = settings_.convection == ConvectionScheme::donor_cell ? donor_cell_blend(dt_s) : 0.0;
   compute_predictor(dt_s, last_gamma_);                                 // eq. 4.6
   std::swap(state_.velocity, predictor_);
   const PressureSolveReport report = project(dt_s);                     // eqs. 3.3, 4.10–4.12, 4.7
@@ -104,7 +219,8 @@ StepReport EulerianSolver::step(double dt_s) {
     if (h > limit * (1.0 + 1e-12)) {
       std::ostringstream msg;
       msg << "Eulerian solver: time step " << dt_s << " s exceeds the stability limit " << limit
-          << " s (CFL eq. 4.8 / viscous eq. 4.9 with safety factor " << settings_.safety_factor << ")";
+          << " s (" << (settings_.convection == ConvectionScheme::donor_cell ? "CFL eq. 4.8" : "Courant sum 1/2 plus viscous rate of the limited scheme")
+          << " / viscous eq. 4.9 with safety factor " << settings_.safety_factor << ")";
       if (settings_.time_step_policy == TimeStepPolicy::refuse) throw std::domain_error(msg.str());
       if (report.message.empty()) report.message = msg.str() + "; split into stable sub-steps";
       h = limit;

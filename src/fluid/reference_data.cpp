@@ -33,4 +33,32 @@ Velocity TaylorGreen::sample(const MacGrid& g, double t_s) const {
   return vel;
 }
 
+namespace {
+// Table V of Ghia et al. (1982): primary vortex centre (x, y) and ψ_min.
+constexpr std::array<GhiaCavityReference, 4> kGhiaReferences{{
+    {100.0, kGhiaRe100CentrelineU, kGhiaRe100CentrelineV, {0.6172, 0.7344, -0.103423}},
+    {400.0, kGhiaRe400CentrelineU, kGhiaRe400CentrelineV, {0.5547, 0.6055, -0.113909}, 5},
+    {1000.0, kGhiaRe1000CentrelineU, kGhiaRe1000CentrelineV, {0.5313, 0.5625, -0.117929}},
+    {3200.0, kGhiaRe3200CentrelineU, kGhiaRe3200CentrelineV, {0.5165, 0.5469, -0.120377}},
+}};
+}  // namespace
+
+std::span<const GhiaCavityReference> ghia_references() { return kGhiaReferences; }
+
+const GhiaCavityReference* ghia_reference(double reynolds) {
+  for (const GhiaCavityReference& r : kGhiaReferences)
+    if (std::abs(reynolds - r.reynolds) <= 1e-9 * r.reynolds) return &r;
+  return nullptr;
+}
+
+std::span<const ProfilePoint> ghia_centreline_u(double reynolds) {
+  const GhiaCavityReference* r = ghia_reference(reynolds);
+  return r ? r->centreline_u : std::span<const ProfilePoint>{};
+}
+
+std::span<const ProfilePoint> ghia_centreline_v(double reynolds) {
+  const GhiaCavityReference* r = ghia_reference(reynolds);
+  return r ? r->centreline_v : std::span<const ProfilePoint>{};
+}
+
 }  // namespace jellysim::fluid

@@ -41,24 +41,39 @@ using simd::Int2;
 using simd::load2;
 using simd::store2;
 
-// Bilinear interpolation of a field (base = sample (0, 0), row stride) at continuous sample
-// indices (fx, fy) of two points. The caller guarantees −1 ≤ fx < count_x and −1 ≤ fy < count_y
-// (true for every point confined to the domain), so unlike Field::sample there is no clamping;
-// same weights and operation order as Field::sample.
-inline Double2 bilinear2(const double* base, int stride, Double2 fx, Double2 fy) {
+// The four samples around continuous sample indices (fx, fy) of two points and the weights
+// within the cell (base = sample (0, 0), row stride). The caller guarantees −1 ≤ fx < count_x and
+// −1 ≤ fy < count_y (true for every point confined to the domain), so unlike Field::sample there
+// is no clamping.
+struct Cell2 {
+  Double2 q00, q01, q10, q11, tx, ty;
+};
+inline Cell2 cell2(const double* base, int stride, Double2 fx, Double2 fy) {
   // floor(f) = trunc(f + 1) − 1 as f ≥ −1; the flat index j0·stride + i0 is computed exactly in
   // doubles and converted once.
   const Double2 i0 = __builtin_convertvector(__builtin_convertvector(fx + 1.0, Int2), Double2) - 1.0;
   const Double2 j0 = __builtin_convertvector(__builtin_convertvector(fy + 1.0, Int2), Double2) - 1.0;
-  const Double2 tx = fx - i0;
-  const Double2 ty = fy - j0;
   const Int2 k = __builtin_convertvector(j0 * static_cast<double>(stride) + i0, Int2);
   const double* a = base + k[0];
   const double* b = base + k[1];
-  const Double2 q00{a[0], b[0]}, q01{a[1], b[1]}, q10{a[stride], b[stride]}, q11{a[stride + 1], b[stride + 1]};
-  const Double2 bottom = (1.0 - tx) * q00 + tx * q01;
-  const Double2 top = (1.0 - tx) * q10 + tx * q11;
-  return (1.0 - ty) * bottom + ty * top;
+  Cell2 c;
+  c.q00 = Double2{a[0], b[0]};
+  c.q01 = Double2{a[1], b[1]};
+  c.q10 = Double2{a[stride], b[stride]};
+  c.q11 = Double2{a[stride + 1], b[stride + 1]};
+  c.tx = fx - i0;
+  c.ty = fy - j0;
+  return c;
+}
+
+// Bilinear interpolation of two points: same weights and operation order as Field::sample.
+inline Double2 bilinear2(const Cell2& c) {
+  const Double2 bottom = (1.0 - c.tx) * c.q00 + c.tx * c.q01;
+  const Double2 top = (1.0 - c.tx) * c.q10 + c.tx * c.q11;
+  return (1.0 - c.ty) * bottom + c.ty * top;
+}
+inline Double2 bilinear2(const double* base, int stride, Double2 fx, Double2 fy) {
+  return bilinear2(cell2(base, stride, fx, fy));
 }
 
 inline bool inside_axis(double x, double n) { return x >= 0.0 && x <= n; }
@@ -114,20 +129,33 @@ double max_abs_stored(const Field& f) {
   return tail == 0.0 ? result : std::numeric_limits<double>::quiet_NaN();
 }
 
+// What one advection pass reads and writes: the carrier velocity that is traced back along, the
+// field that is sampled at the end points (the carrier itself for Stam's step), and optionally
+// the per-face sample range of the final interpolation.
+struct AdvectionPass {
+  const Velocity& carrier;
+  const Velocity& quantity;
+  Velocity& dst;
+  VelocityBounds* bounds = nullptr;
+};
+
 // Advects one component (0: u on x-faces, 1: v on y-faces) over the faces of `r`. Positions are
 // in grid coordinates (cells from the origin corner); the sample indices of u are (x, y − ½), of
-// v (x − ½, y). Midpoint back-trace as back_trace(): x − Δt·u(x − ½Δt·u(x)).
+// v (x − ½, y). Midpoint back-trace as back_trace(): x − Δt·u(x − ½Δt·u(x)), u the carrier;
+// ax = Δt/Δx and ay = Δt/Δy are negative for a forward (reverse-in-time) trace.
 // Each row is done in chunks of kChunk faces and three passes (midpoints; velocity there and end
 // points; final sample), two faces at a time; the independent faces of a pass overlap in the CPU
 // instead of each face waiting on its own chain of three dependent interpolations. An odd face
 // count is padded with the next face (its inputs are stored samples or ghosts; its result is
 // dropped).
-template <int Component, bool PeriodicX, bool PeriodicY>
-void advect_component(const Velocity& src, double ax, double ay, double reach_x, double reach_y, const FaceRange& r,
-                      Field& dst) {
+template <int Component, bool PeriodicX, bool PeriodicY, bool Bounds>
+void advect_component(const AdvectionPass& pass, double ax, double ay, double reach_x, double reach_y,
+                      const FaceRange& r) {
   constexpr int kChunk = 128;
   constexpr double sx = Component == 0 ? 0.0 : 0.5;  // staggering of the component
   constexpr double sy = Component == 0 ? 0.5 : 0.0;
+  const Velocity& src = pass.carrier;
+  Field& dst = Component == 0 ? pass.dst.u : pass.dst.v;
   const MacGrid& g = src.u.grid();
   const double nx = g.nx;
   const double ny = g.ny;
@@ -135,8 +163,9 @@ void advect_component(const Velocity& src, double ax, double ay, double reach_x,
   const double* V = src.v.ptr(0, 0);
   const int su = static_cast<int>(src.u.stride());
   const int sv = static_cast<int>(src.v.stride());
-  const double* F = Component == 0 ? U : V;
-  const int sf = Component == 0 ? su : sv;
+  const Field& quantity = Component == 0 ? pass.quantity.u : pass.quantity.v;
+  const double* F = quantity.ptr(0, 0);
+  const int sf = static_cast<int>(quantity.stride());
   const double half_ax = 0.5 * ax;
   const double half_ay = 0.5 * ay;
   const Double2 lane{0.0, 1.0};
@@ -144,6 +173,12 @@ void advect_component(const Velocity& src, double ax, double ay, double reach_x,
   for (int j = r.j_begin; j < r.j_end; ++j) {
     const double gy = j + sy;
     double* out = dst.ptr(0, j);
+    double* out_lo = nullptr;
+    double* out_hi = nullptr;
+    if constexpr (Bounds) {
+      out_lo = (Component == 0 ? pass.bounds->lo.u : pass.bounds->lo.v).ptr(0, j);
+      out_hi = (Component == 0 ? pass.bounds->hi.u : pass.bounds->hi.v).ptr(0, j);
+    }
     // Velocity at the faces of row j: the component itself and the average of the other one's
     // four surrounding faces (velocity_at_u_face / velocity_at_v_face).
     const double* own = Component == 0 ? src.u.ptr(0, j) : src.v.ptr(0, j);
@@ -168,10 +203,27 @@ void advect_component(const Velocity& src, double ax, double ay, double reach_x,
         store2(px + k, confine2<PeriodicX, Confine>(gx - ax * um, nx));
         store2(py + k, confine2<PeriodicY, Confine>(gy - ay * vm, ny));
       }
-      int k = 0;
-      for (; k + 2 <= n; k += 2)  // pass 3: the component at the end points
-        store2(out + c0 + k, bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy));
-      if (k < n) out[c0 + k] = bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy)[0];
+      if constexpr (Bounds) {  // pass 3 with the sample ranges
+        for (int k = 0; k < n; k += 2) {
+          // The value and the smallest and largest of the four samples it combined (the range a
+          // compensated scheme's value is clamped to).
+          const Cell2 c = cell2(F, sf, load2(px + k) - sx, load2(py + k) - sy);
+          const Double2 value = bilinear2(c);
+          const Double2 lo = simd::min2(simd::min2(c.q00, c.q01), simd::min2(c.q10, c.q11));
+          const Double2 hi = simd::max2(simd::max2(c.q00, c.q01), simd::max2(c.q10, c.q11));
+          const int m = std::min(2, n - k);
+          for (int e = 0; e < m; ++e) {
+            out[c0 + k + e] = value[e];
+            out_lo[c0 + k + e] = lo[e];
+            out_hi[c0 + k + e] = hi[e];
+          }
+        }
+      } else {
+        int k = 0;
+        for (; k + 2 <= n; k += 2)  // pass 3: the quantity at the end points
+          store2(out + c0 + k, bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy));
+        if (k < n) out[c0 + k] = bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy)[0];
+      }
     };
     // A chunk whose faces lie at least reach_x (reach_y) cells inside the domain cannot trace
     // back out of it (|velocity| ≤ the field's max), so it needs no clamping or wrapping.
@@ -192,31 +244,174 @@ void advect_component(const Velocity& src, double ax, double ay, double reach_x,
   }
 }
 
-template <bool PeriodicX, bool PeriodicY>
-void advect_both(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
+template <bool PeriodicX, bool PeriodicY, bool Bounds>
+void advect_both(const AdvectionPass& pass, const Boundaries& b, double dt_s) {
+  const Velocity& src = pass.carrier;
   const MacGrid& g = src.u.grid();
   const double ax = dt_s / g.dx();  // cells per (m/s) of velocity
   const double ay = dt_s / g.dy();
   // Largest distance (cells) a back-trace can move; NaN (a non-finite velocity) makes every
   // "inside" test false, so every chunk is then confined.
-  const double reach_x = ax * max_abs_stored(src.u);
-  const double reach_y = ay * max_abs_stored(src.v);
-  advect_component<0, PeriodicX, PeriodicY>(src, ax, ay, reach_x, reach_y, interior_u_faces(g, b), dst.u);
-  advect_component<1, PeriodicX, PeriodicY>(src, ax, ay, reach_x, reach_y, interior_v_faces(g, b), dst.v);
+  const double reach_x = std::abs(ax) * max_abs_stored(src.u);
+  const double reach_y = std::abs(ay) * max_abs_stored(src.v);
+  advect_component<0, PeriodicX, PeriodicY, Bounds>(pass, ax, ay, reach_x, reach_y, interior_u_faces(g, b));
+  advect_component<1, PeriodicX, PeriodicY, Bounds>(pass, ax, ay, reach_x, reach_y, interior_v_faces(g, b));
+}
+
+template <bool Bounds>
+void advect_pass(const AdvectionPass& pass, const Boundaries& b, double dt_s) {
+  if (b.periodic_x()) {
+    if (b.periodic_y()) advect_both<true, true, Bounds>(pass, b, dt_s);
+    else advect_both<true, false, Bounds>(pass, b, dt_s);
+  } else {
+    if (b.periodic_y()) advect_both<false, true, Bounds>(pass, b, dt_s);
+    else advect_both<false, false, Bounds>(pass, b, dt_s);
+  }
+  apply_velocity_boundaries(pass.dst, b);
 }
 
 }  // namespace
 
 void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
-  if (b.periodic_x()) {
-    if (b.periodic_y()) advect_both<true, true>(src, b, dt_s, dst);
-    else advect_both<true, false>(src, b, dt_s, dst);
+  advect_pass<false>(AdvectionPass{src, src, dst}, b, dt_s);
+}
+
+void advect_velocity_by(const Velocity& carrier, const Velocity& quantity, const Boundaries& b, double dt_s,
+                        Velocity& dst, VelocityBounds* bounds) {
+  if (bounds) advect_pass<true>(AdvectionPass{carrier, quantity, dst, bounds}, b, dt_s);
+  else advect_pass<false>(AdvectionPass{carrier, quantity, dst}, b, dt_s);
+}
+
+VelocityBounds::VelocityBounds(const MacGrid& g) : lo(g), hi(g) {}
+
+CompensatedAdvection::CompensatedAdvection(const MacGrid& g) : forward_(g), backward_(g), bounds_(g) {}
+
+namespace {
+
+// Over the interior faces of both components: out = f(a, b, c, lo, hi) sample by sample.
+template <class Fn>
+void combine_interior(const Boundaries& b, const Velocity& x, const Velocity& y, const VelocityBounds& range,
+                      Velocity& out, Fn&& fn) {
+  const MacGrid& g = x.u.grid();
+  for (int c = 0; c < 2; ++c) {
+    const FaceRange r = c == 0 ? interior_u_faces(g, b) : interior_v_faces(g, b);
+    const Field& fx = c == 0 ? x.u : x.v;
+    const Field& fy = c == 0 ? y.u : y.v;
+    const Field& lo = c == 0 ? range.lo.u : range.lo.v;
+    const Field& hi = c == 0 ? range.hi.u : range.hi.v;
+    Field& fo = c == 0 ? out.u : out.v;
+    for (int j = r.j_begin; j < r.j_end; ++j)
+      for (int i = r.i_begin; i < r.i_end; ++i) fo(i, j) = fn(fx(i, j), fy(i, j), fo(i, j), lo(i, j), hi(i, j));
+  }
+}
+
+}  // namespace
+
+namespace {
+void advect_cubic(const Velocity& carrier, const Velocity& quantity, const Boundaries& b, double dt_s, Velocity& dst);
+}  // namespace
+
+void CompensatedAdvection::advect(AdvectionScheme scheme, const Velocity& carrier, const Velocity& quantity,
+                                  const Boundaries& b, double dt_s, Velocity& dst) {
+  if (scheme == AdvectionScheme::linear) {
+    advect_velocity_by(carrier, quantity, b, dt_s, dst);
+    return;
+  }
+  if (scheme == AdvectionScheme::cubic) {
+    advect_cubic(carrier, quantity, b, dt_s, dst);
+    return;
+  }
+  // φ̂ = A(φ) with the range of the samples each face used, then the reverse trace of φ̂.
+  advect_velocity_by(carrier, quantity, b, dt_s, forward_, &bounds_);
+  advect_velocity_by(carrier, forward_, b, -dt_s, backward_);
+  if (scheme == AdvectionScheme::maccormack) {
+    // Selle et al. (2008) eq. 5: φ = φ̂ + ½(φⁿ − A^R(φ̂)), clamped to the forward samples' range.
+    dst = forward_;
+    combine_interior(b, quantity, backward_, bounds_, dst, [](double q, double back, double fwd, double lo, double hi) {
+      return std::clamp(fwd + 0.5 * (q - back), lo, hi);
+    });
   } else {
-    if (b.periodic_y()) advect_both<false, true>(src, b, dt_s, dst);
-    else advect_both<false, false>(src, b, dt_s, dst);
+    // Kim et al. (2005): φ̃ = φⁿ + ½(φⁿ − A^R(A(φⁿ))), then A(φ̃) (the same end points as the
+    // first trace, so the same sample range), clamped as Selle et al. suggest.
+    Velocity& compensated = backward_;
+    combine_interior(b, quantity, backward_, bounds_, compensated,
+                     [](double q, double back, double, double, double) { return q + 0.5 * (q - back); });
+    apply_velocity_boundaries(compensated, b);
+    advect_velocity_by(carrier, compensated, b, dt_s, dst);
+    combine_interior(b, dst, dst, bounds_, dst,
+                     [](double value, double, double, double lo, double hi) { return std::clamp(value, lo, hi); });
   }
   apply_velocity_boundaries(dst, b);
 }
+
+namespace {
+
+// Monotone cubic Hermite interpolation at t ∈ [0, 1] between f1 and f2 (f0, f3 their outer
+// neighbours): central slopes, zeroed where their sign differs from the interval's difference
+// (Fedkiw et al.) and at most three times it (Fritsch & Carlson 1980: with slopes in [0, 3Δ] the
+// cubic stays between f1 and f2).
+double monotone_cubic(double f0, double f1, double f2, double f3, double t) {
+  const double delta = f2 - f1;
+  double d1 = 0.5 * (f2 - f0);
+  double d2 = 0.5 * (f3 - f1);
+  if (delta == 0.0) {
+    d1 = d2 = 0.0;
+  } else {
+    d1 = std::clamp(d1 / delta, 0.0, 3.0) * delta;
+    d2 = std::clamp(d2 / delta, 0.0, 3.0) * delta;
+  }
+  const double t2 = t * t, t3 = t2 * t;
+  return f1 + d1 * t + (3.0 * delta - 2.0 * d1 - d2) * t2 + (d1 + d2 - 2.0 * delta) * t3;
+}
+
+// A sample index beyond the stored range [−1, count]: wrapped by the period (cells) or clamped.
+int stencil_index(int i, int count, int period) {
+  if (i >= -1 && i <= count) return i;
+  return period > 0 ? ((i % period) + period) % period : std::clamp(i, -1, count);
+}
+
+}  // namespace
+
+double sample_monotone_cubic(const Field& f, const Boundaries& b, Vec2 p) {
+  const MacGrid& g = f.grid();
+  const Staggering s = f.staggering();
+  const Vec2 c = g.grid_from_world(p);
+  const double fx = std::clamp(c.x - s.x, -1.0, static_cast<double>(f.count_x()));
+  const double fy = std::clamp(c.y - s.y, -1.0, static_cast<double>(f.count_y()));
+  const int i0 = std::min(static_cast<int>(std::floor(fx)), f.count_x() - 1);
+  const int j0 = std::min(static_cast<int>(std::floor(fy)), f.count_y() - 1);
+  const int px = b.periodic_x() ? g.nx : 0;
+  const int py = b.periodic_y() ? g.ny : 0;
+  double rows[4];
+  for (int r = 0; r < 4; ++r) {
+    const int j = stencil_index(j0 - 1 + r, f.count_y(), py);
+    double q[4];
+    for (int k = 0; k < 4; ++k) q[k] = f(stencil_index(i0 - 1 + k, f.count_x(), px), j);
+    rows[r] = monotone_cubic(q[0], q[1], q[2], q[3], fx - i0);
+  }
+  return monotone_cubic(rows[0], rows[1], rows[2], rows[3], fy - j0);
+}
+
+namespace {
+
+// One trace per face along `carrier` (midpoint back_trace), then the monotone cubic sample of
+// `quantity` there.
+void advect_cubic(const Velocity& carrier, const Velocity& quantity, const Boundaries& b, double dt_s, Velocity& dst) {
+  const MacGrid& g = carrier.u.grid();
+  const FaceRange ru = interior_u_faces(g, b);
+  for (int j = ru.j_begin; j < ru.j_end; ++j)
+    for (int i = ru.i_begin; i < ru.i_end; ++i)
+      dst.u(i, j) = sample_monotone_cubic(
+          quantity.u, b, back_trace(carrier, b, quantity.u.position(i, j), velocity_at_u_face(carrier, i, j), dt_s));
+  const FaceRange rv = interior_v_faces(g, b);
+  for (int j = rv.j_begin; j < rv.j_end; ++j)
+    for (int i = rv.i_begin; i < rv.i_end; ++i)
+      dst.v(i, j) = sample_monotone_cubic(
+          quantity.v, b, back_trace(carrier, b, quantity.v.position(i, j), velocity_at_v_face(carrier, i, j), dt_s));
+  apply_velocity_boundaries(dst, b);
+}
+
+}  // namespace
 
 void advect_velocity_reference(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst) {
   const MacGrid& g = src.u.grid();
@@ -272,6 +467,22 @@ struct HelmholtzCoefficients {
 }  // namespace
 
 ImplicitDiffusion::ImplicitDiffusion(const MacGrid& g) : r_(g), d_(g) {}
+
+void ImplicitDiffusion::apply_explicit(Velocity& vel, const Boundaries& b, double nu_dt_m2) {
+  if (nu_dt_m2 <= 0.0) return;
+  apply_velocity_boundaries(vel, b);
+  const HelmholtzCoefficients forward(vel.u.grid(), -nu_dt_m2);  // I + νΔt∇²
+  for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
+    const Field& f = component(vel, c);
+    const double* u = f.ptr(0, j);
+    double* r = component(r_, c).ptr(0, j);
+    for (int i = i0; i < i1; ++i) r[i] = forward.apply(u, f.ptr(0, j - 1), f.ptr(0, j + 1), i);
+  });
+  for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
+    std::copy(component(r_, c).ptr(i0, j), component(r_, c).ptr(i1, j), component(vel, c).ptr(i0, j));
+  });
+  apply_velocity_boundaries(vel, b);
+}
 
 int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
                              int max_iterations) {

@@ -55,6 +55,10 @@ ParameterTable make_jellyfish_scene() {
        "fluid cells along x and y [nx, ny]: 2.5 mm, 16 across the bell"},
       choice("tank.solver", "eulerian", fluid::fluid_solver_names(),
              "eulerian (§4.1) or semi-lagrangian (Stam, §4.2: more diffusive, docs/jellyfish.md)"),
+      choice("tank.convection", "donor-cell", fluid::convection_scheme_names(),
+             "Eulerian convection: the thesis's γ blend, or limited second order (koren, van-leer; docs/fluids.md)"),
+      choice("tank.advection", "linear", fluid::advection_scheme_names(),
+             "semi-Lagrangian advection: the thesis's linear, or second order (maccormack, bfecc, cubic)"),
       choice("tank.pressure_solver", "fft", fluid::pressure_solver_names(),
              "fft is exact and fastest on uniform grids; direct: sparse Cholesky"),
       number("tank.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
@@ -334,6 +338,8 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.cells_x = static_cast<int>(cells[0]);
   t.cells_y = static_cast<int>(cells[1]);
   t.solver = r.choice("tank.solver");
+  t.convection = *fluid::convection_scheme_from_string(r.choice("tank.convection"));
+  t.advection = *fluid::advection_scheme_from_string(r.choice("tank.advection"));
   t.pressure_solver = r.choice("tank.pressure_solver");
   t.pressure_tolerance = r.number("tank.pressure_tolerance");
   t.viscosity_m2_per_s = r.number("tank.viscosity");

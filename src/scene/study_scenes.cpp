@@ -25,8 +25,12 @@ ParameterTable make_cavity() {
       number("cavity.time_step", "0.0", "s", Range::non_negative(),
              "0: the Eulerian CFL/viscous limit (eqs. 4.8-4.9), or Δx/U semi-Lagrangian"),
       number("cavity.safety_factor", "0.9", "", Range{0.0, 1.0, true, false}, "on the Eulerian step limit"),
-      number("cavity.max_time", "60.0", "s", Range::positive(), "stop here if not steady before"),
-      number("cavity.steady_tolerance", "1e-5", "", Range::positive(),
+      choice("cavity.convection", "koren", fluid::convection_scheme_names(),
+             "Eulerian: limited second order (koren, van-leer) or the thesis's γ blend"),
+      choice("cavity.advection", "maccormack", fluid::advection_scheme_names(),
+             "semi-Lagrangian: second order (maccormack, bfecc, cubic) or the thesis's linear"),
+      number("cavity.max_time", "200.0", "s", Range::positive(), "stop here if not steady before"),
+      number("cavity.steady_tolerance", "1e-6", "", Range::positive(),
              "steady when max|du/dt| < tolerance U²/L (`--steady-tolerance`); else the run ends at max_time"),
       number("output.frame_interval", "1.0", "s", Range::non_negative(),
              "between VTK frames (frames/*.vti, *.vtp, listed in cavity.pvd); 0: none"),
@@ -42,7 +46,8 @@ ParameterTable make_cavity() {
   return ParameterTable(
       "driven-cavity",
       "# Lid-driven cavity (thesis §8.1.3, Figure 8.7): unit square, lid speed 1 on the top side, no-slip\n"
-      "# elsewhere. Run to steady state and compared with Ghia, Ghia & Shin (1982) when re = 100.\n"
+      "# elsewhere. Run to steady state and compared with Ghia, Ghia & Shin (1982) when re = 100, 400,\n"
+      "# 1000 or 3200 (centreline profiles and the primary vortex).\n"
       "# `jellysim experiment driven-cavity --solver S --re R --grid N` sets the three top-level keys.\n"
       "# Generated from the parameter table (src/scene/study_scenes.cpp): jellysim scenes driven-cavity\n",
       std::move(p));
@@ -89,6 +94,10 @@ ParameterTable make_taylor_green() {
   const std::vector<Parameter> rest{
       number("flow.end_time", "1.0", "s", Range::positive(), "errors are measured here"),
       {"study.solvers", Type::choices, "[\"eulerian\", \"semi-lagrangian\"]", "", {}, fluid::fluid_solver_names(), 0, "fluid solvers compared"},
+      {"study.convection", Type::choices, "[\"donor-cell\", \"van-leer\", \"koren\"]", "", {},
+       fluid::convection_scheme_names(), 0, "convection schemes the Eulerian solver is run with"},
+      {"study.advection", Type::choices, "[\"linear\", \"maccormack\", \"bfecc\", \"cubic\"]", "", {},
+       fluid::advection_scheme_names(), 0, "advection schemes the semi-Lagrangian solver is run with"},
       {"study.grids", Type::integers, "[16, 32, 64, 128]", "", Range::closed(4, 2048), {}, 0, "cells per side"},
       number("study.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "Eulerian Δt = factor × limit of eqs. 4.8-4.9"),
       number("study.semi_lagrangian_courant", "0.5", "", Range::positive(), "semi-Lagrangian Δt = courant × Δx / U"),
@@ -99,7 +108,7 @@ ParameterTable make_taylor_green() {
   return ParameterTable(
       "taylor-green",
       "# Periodic Taylor–Green vortex against its exact solution (thesis ch. 4): error norms and measured\n"
-      "# order of convergence in space for both fluid solvers over several grids.\n"
+      "# order of convergence in space for both fluid solvers, with each of their schemes, over several grids.\n"
       "# Generated from the parameter table (src/scene/study_scenes.cpp): jellysim scenes taylor-green\n",
       std::move(p));
 }
@@ -156,7 +165,11 @@ studies::TaylorGreenSettings read_taylor_green(const io::Config& c) {
   s.flow = read_flow(r);
   s.end_time_s = r.number("flow.end_time");
   s.solvers = r.choices("study.solvers");
+  s.convection_schemes = r.choices("study.convection");
+  s.advection_schemes = r.choices("study.advection");
   s.grids = read_grids(r);
+  if (s.grids.size() < 2)  // an order needs two errors
+    throw InputError("field 'study.grids' must list at least two grids to measure an order of convergence");
   s.safety_factor = r.number("study.safety_factor");
   s.semi_lagrangian_courant = r.number("study.semi_lagrangian_courant");
   s.pressure_solver = r.choice("study.pressure_solver");
@@ -199,6 +212,8 @@ CavityScene read_cavity_scene(const io::Config& c) {
   s.cavity.pressure_tolerance = r.number("cavity.pressure_tolerance");
   s.cavity.time_step_s = r.number("cavity.time_step");
   s.cavity.safety_factor = r.number("cavity.safety_factor");
+  s.cavity.convection = *fluid::convection_scheme_from_string(r.choice("cavity.convection"));
+  s.cavity.advection = *fluid::advection_scheme_from_string(r.choice("cavity.advection"));
   s.cavity.max_time_s = r.number("cavity.max_time");
   s.cavity.steady_tolerance = r.number("cavity.steady_tolerance");
   s.cavity.frame_interval_s = r.number("output.frame_interval");

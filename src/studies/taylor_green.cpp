@@ -59,11 +59,17 @@ double optimal_sor_omega(int nx, int ny) {
   return 2.0 / (1.0 + std::sin(std::numbers::pi / std::max(nx, ny)));
 }
 
-TaylorGreenRun run_taylor_green_once(const std::string& solver_name, int cells, const TaylorGreenSettings& s) {
+const std::vector<std::string>& schemes_of(const TaylorGreenSettings& s, const std::string& solver) {
+  return solver == "eulerian" ? s.convection_schemes : s.advection_schemes;
+}
+
+TaylorGreenRun run_taylor_green_once(const std::string& solver_name, const std::string& scheme, int cells,
+                                     const TaylorGreenSettings& s) {
   const auto start = std::chrono::steady_clock::now();
   const fluid::MacGrid g = periodic_square(s.flow, cells);
-  auto solver = fluid::make_fluid_solver(solver_name, g,
-                                  taylor_green_settings(s.flow, s.pressure_solver, s.pressure_tolerance, s.safety_factor));
+  fluid::FluidSettings f = taylor_green_settings(s.flow, s.pressure_solver, s.pressure_tolerance, s.safety_factor);
+  fluid::set_scheme(f, solver_name, scheme);
+  auto solver = fluid::make_fluid_solver(solver_name, g, f);
   solver->state().velocity = s.flow.sample(g, 0.0);
   solver->apply_boundaries();
   // A uniform Δt that ends exactly at end_time and respects the (initial, largest) limit.
@@ -72,32 +78,34 @@ TaylorGreenRun run_taylor_green_once(const std::string& solver_name, int cells, 
   const double dt = s.end_time_s / steps;
   for (int k = 0; k < steps; ++k) solver->step(dt);
   const ErrorNorms e = velocity_error(solver->state().velocity, s.flow, s.end_time_s);
-  TaylorGreenRun run{solver_name, cells, dt, steps, e.l2, e.max, 0.0};
+  TaylorGreenRun run{solver_name, scheme, cells, dt, steps, e.l2, e.max, 0.0};
   run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
 
 TaylorGreenResult run_taylor_green(const TaylorGreenSettings& settings) {
   TaylorGreenResult result;
-  for (const std::string& solver : settings.solvers) {
-    const std::size_t first = result.runs.size();
-    for (int cells : settings.grids) result.runs.push_back(run_taylor_green_once(solver, cells, settings));
-    for (std::size_t k = first + 1; k < result.runs.size(); ++k) {
-      const TaylorGreenRun& coarse = result.runs[k - 1];
-      const TaylorGreenRun& fine = result.runs[k];
-      const double ratio = std::log(static_cast<double>(fine.cells) / coarse.cells);
-      result.orders.push_back({solver, coarse.cells, fine.cells, std::log(coarse.error_l2 / fine.error_l2) / ratio,
-                               std::log(coarse.error_max / fine.error_max) / ratio});
+  for (const std::string& solver : settings.solvers)
+    for (const std::string& scheme : schemes_of(settings, solver)) {
+      const std::size_t first = result.runs.size();
+      for (int cells : settings.grids) result.runs.push_back(run_taylor_green_once(solver, scheme, cells, settings));
+      for (std::size_t k = first + 1; k < result.runs.size(); ++k) {
+        const TaylorGreenRun& coarse = result.runs[k - 1];
+        const TaylorGreenRun& fine = result.runs[k];
+        const double ratio = std::log(static_cast<double>(fine.cells) / coarse.cells);
+        result.orders.push_back({solver, scheme, coarse.cells, fine.cells,
+                                 std::log(coarse.error_l2 / fine.error_l2) / ratio,
+                                 std::log(coarse.error_max / fine.error_max) / ratio});
+      }
     }
-  }
   return result;
 }
 
-double TaylorGreenResult::fitted_order_l2(const std::string& solver) const {
+double TaylorGreenResult::fitted_order_l2(const std::string& solver, const std::string& scheme) const {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (const TaylorGreenRun& r : runs) {
-    if (r.solver != solver) continue;
+    if (r.solver != solver || r.scheme != scheme) continue;
     const double x = std::log(1.0 / r.cells);  // log Δx up to a constant
     const double y = std::log(r.error_l2);
     sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;

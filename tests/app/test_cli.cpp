@@ -200,6 +200,29 @@ TEST(Cli, IntegratorOrderExperimentMeasuresExpectedOrders) {
   fs::remove_all(dir);
 }
 
+// Ghia et al. tabulate Re = 100, 400, 1000 and 3200: the comparison is written for those only
+// (a short run on a coarse grid: only which files and keys appear is checked).
+TEST(Cli, DrivenCavityComparesWithGhiaAtEveryTabulatedReynoldsNumberOnly) {
+  for (const auto& [re, tabulated] : {std::pair{"400", true}, {"3200", true}, {"500", false}}) {
+    const fs::path dir = fresh_dir(std::string("cavity_re") + re);
+    const Result r = run_cli(std::string("experiment driven-cavity --quiet --re ") + re +
+                             " --grid 8 --set figure_8_7.enabled=false --set output.frame_interval=0"
+                             " --set output.tracers_per_side=0 --set cavity.max_time=0.5 --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto summary = summary_of(dir);
+    EXPECT_TRUE(summary.contains("psi_min")) << re;
+    EXPECT_TRUE(summary.contains("vortex_centre_x")) << re;
+    EXPECT_EQ(fs::exists(dir / "ghia_comparison.csv"), tabulated) << re;
+    EXPECT_EQ(summary.contains("ghia_max_abs_u_error"), tabulated) << re;
+    EXPECT_EQ(summary.contains("ghia_psi_min"), tabulated) << re;
+    if (std::string(re) == "400") {
+      EXPECT_EQ(summary["ghia_psi_min"].get<double>(), -0.113909);
+      EXPECT_NE(read_file(dir / "ghia_comparison.csv").find("\nu,0.9766,0.75837,"), std::string::npos);
+    }
+    fs::remove_all(dir);
+  }
+}
+
 TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   const fs::path dir = fresh_dir("cavity");
   const Result r = run_cli("experiment driven-cavity --quiet --solver eulerian --re 100 --grid 16 "
@@ -225,15 +248,32 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   // (the 0.02 check at 64² is in tests/fluid).
   EXPECT_LT(summary["ghia_max_abs_u_error"].get<double>(), 0.1);
   EXPECT_LT(summary["ghia_max_abs_v_error"].get<double>(), 0.1);
+  // The primary vortex (the stream function's minimum) next to Ghia et al.'s Table V; at 16²
+  // measured (0.610, 0.751), ψ_min = −0.0916: about half these tolerances.
+  EXPECT_EQ(summary["ghia_vortex_centre_x"].get<double>(), 0.6172);
+  EXPECT_EQ(summary["ghia_vortex_centre_y"].get<double>(), 0.7344);
+  EXPECT_EQ(summary["ghia_psi_min"].get<double>(), -0.103423);
+  EXPECT_NEAR(summary["vortex_centre_x"].get<double>(), 0.6172, 0.015);
+  EXPECT_NEAR(summary["vortex_centre_y"].get<double>(), 0.7344, 0.035);
+  EXPECT_NEAR(summary["psi_min"].get<double>(), -0.103423, 0.025);
   EXPECT_EQ(run_cli("experiment driven-cavity --quiet --solver rk4 --out " + dir.string() + "_bad").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir.string() + "_bad"));
-  // At 16² the flow does not settle below the default tolerance (1e-5) by the time limit, and the
-  // summary says so; with --steady-tolerance 1e-2 it stops when the change rate falls below it,
-  // and convergence.csv's history ends there.
-  EXPECT_FALSE(summary["steady"].get<bool>());
-  EXPECT_EQ(summary["stopped_by"], "max_time");
-  EXPECT_GE(summary["final_change_rate"].get<double>(), summary["steady_tolerance"].get<double>());
+  // With the default scheme (Koren) even the 16² flow settles below the default tolerance (1e-6);
+  // a time limit before that stops the run, and the summary says which; with --steady-tolerance
+  // 1e-2 it stops when the change rate falls below that, and convergence.csv's history ends there.
+  EXPECT_TRUE(summary["steady"].get<bool>());
+  EXPECT_EQ(summary["stopped_by"], "steady_tolerance");
+  EXPECT_LT(summary["final_change_rate"].get<double>(), 1e-6);
+  EXPECT_EQ(summary["steady_tolerance"].get<double>(), 1e-6);
   EXPECT_TRUE(fs::exists(dir / "convergence.png"));
+  const fs::path limited = fresh_dir("cavity_limited");
+  ASSERT_EQ(run_cli("experiment driven-cavity --quiet --grid 16 --set cavity.max_time=2 --set figure_8_7.enabled=false "
+                    "--out " + limited.string()).exit_code, 0);
+  const auto unsettled = summary_of(limited);
+  EXPECT_FALSE(unsettled["steady"].get<bool>());
+  EXPECT_EQ(unsettled["stopped_by"], "max_time");
+  EXPECT_GE(unsettled["final_change_rate"].get<double>(), 1e-6);
+  EXPECT_EQ(unsettled["simulated_seconds"].get<double>(), 2.0);
   const fs::path loose = fresh_dir("cavity_loose");
   ASSERT_EQ(run_cli("experiment driven-cavity --quiet --grid 16 --steady-tolerance 1e-2 --set figure_8_7.enabled=false "
                     "--out " + loose.string()).exit_code, 0);
@@ -241,25 +281,37 @@ TEST(Cli, DrivenCavityWritesProfilesAndGhiaComparison) {
   EXPECT_TRUE(stopped["steady"].get<bool>());
   EXPECT_EQ(stopped["stopped_by"], "steady_tolerance");
   EXPECT_LT(stopped["final_change_rate"].get<double>(), 1e-2);
-  EXPECT_LT(stopped["simulated_seconds"].get<double>(), 10.0);  // 4.28 s measured
+  EXPECT_LT(stopped["simulated_seconds"].get<double>(), 10.0);
   const std::string history = read_file(loose / "convergence.csv");
   EXPECT_EQ(history.substr(0, 14), "t,change_rate\n");
   const std::string last = history.substr(history.rfind('\n', history.size() - 2) + 1);
   EXPECT_DOUBLE_EQ(std::stod(last.substr(last.find(',') + 1)), stopped["final_change_rate"].get<double>());
   EXPECT_EQ(run_cli("experiment taylor-green --quiet --steady-tolerance 1e-3 --out " + loose.string() + "_bad").exit_code, 2);
   fs::remove_all(dir);
+  fs::remove_all(limited);
   fs::remove_all(loose);
 }
 
-TEST(Cli, TaylorGreenMeasuresSpatialOrderOfBothSolvers) {
+TEST(Cli, TaylorGreenMeasuresTheOrderOfEverySchemeOfBothSolvers) {
   const fs::path dir = fresh_dir("taylor_green");
   const Result r = run_cli("experiment taylor-green --quiet --set 'study.grids=[16, 32, 64]' --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto orders = summary_of(dir)["measured_orders_l2"];
-  EXPECT_GT(orders["eulerian"].get<double>(), 1.7);        // second order in space
-  EXPECT_NEAR(orders["semi-lagrangian"].get<double>(), 0.9, 0.2);  // first order (splitting, Δt ∝ Δx)
-  EXPECT_EQ(read_file(dir / "taylor_green.csv").substr(0, 16), "solver,cells,dx,");
+  EXPECT_GT(orders["eulerian"]["donor-cell"].get<double>(), 1.7);  // second order in space
+  EXPECT_GT(orders["eulerian"]["koren"].get<double>(), 2.2);
+  EXPECT_NEAR(orders["semi-lagrangian"]["linear"].get<double>(), 0.9, 0.2);  // first order (splitting, Δt ∝ Δx)
+  EXPECT_GT(orders["semi-lagrangian"]["maccormack"].get<double>(), 1.8);
+  EXPECT_GT(orders["semi-lagrangian"]["bfecc"].get<double>(), 1.8);
+  EXPECT_GT(orders["semi-lagrangian"]["cubic"].get<double>(), 1.8);
+  const std::string csv = read_file(dir / "taylor_green.csv");
+  EXPECT_EQ(csv.substr(0, 23), "solver,scheme,cells,dx,");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + (3 + 4) * 3);  // (3 + 4 schemes) x grids
+  EXPECT_NE(csv.find("\nsemi-lagrangian,bfecc,64,"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "taylor_green.png"));
+  const Result one_grid = run_cli("experiment taylor-green --quiet --set 'study.grids=[32]' --out " + dir.string() + "_one");
+  EXPECT_EQ(one_grid.exit_code, 2);
+  EXPECT_NE(one_grid.output.find("study.grids"), std::string::npos) << one_grid.output;
+  EXPECT_FALSE(fs::exists(dir.string() + "_one"));
   fs::remove_all(dir);
 }
 

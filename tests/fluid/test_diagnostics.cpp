@@ -5,6 +5,7 @@
 
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/fluid/reference_data.hpp"
 #include "jellysim/fluid/tracers.hpp"
 
 namespace jellysim::fluid {
@@ -27,6 +28,62 @@ TEST(Diagnostics, VorticityOfARigidRotationIsTwiceItsAngularVelocity) {
     for (int i = 0; i <= g.nx; ++i) EXPECT_NEAR(w(i, j), 1.4, 1e-12);
   const Field s = speed_at_centres(vel);
   EXPECT_NEAR(s(0, 0), 0.7 * norm(s.position(0, 0)), 1e-12);
+}
+
+// A velocity whose face fluxes are differences of a stream function given at the nodes:
+// u(i, j) = (ψ(i, j+1) − ψ(i, j))/Δy, v(i, j) = −(ψ(i+1, j) − ψ(i, j))/Δx (discretely divergence-free).
+template <class Psi>
+Velocity velocity_from_node_stream_function(const MacGrid& g, Psi&& psi) {
+  Velocity vel(g);
+  const Field nodes(g, kNodes);
+  auto at = [&](int i, int j) { return psi(nodes.position(i, j)); };
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) vel.u(i, j) = (at(i, j + 1) - at(i, j)) / g.dy();
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) vel.v(i, j) = -(at(i + 1, j) - at(i, j)) / g.dx();
+  return vel;
+}
+
+TEST(Diagnostics, StreamFunctionOfAFieldBuiltFromAStreamFunctionIsThatFunction) {
+  // Off-origin, non-square cells, ψ nonzero on every side (so the bottom-row integration of −v
+  // matters): recovered up to its value at the origin corner, to round-off.
+  const MacGrid g(12, 9, 1.5, 1.2, {-0.3, 0.2});
+  auto psi = [](Vec2 p) { return std::sin(2.0 * p.x + 0.3) * std::cos(1.5 * p.y) + 0.2 * p.x * p.y * p.y; };
+  const Field s = stream_function_at_nodes(velocity_from_node_stream_function(g, psi));
+  EXPECT_EQ(s.count_x(), g.nx + 1);
+  EXPECT_EQ(s.count_y(), g.ny + 1);
+  const double offset = psi(g.origin_m);
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) EXPECT_NEAR(s(i, j), psi(s.position(i, j)) - offset, 1e-13) << i << "," << j;
+}
+
+TEST(Diagnostics, StreamFunctionOfTheTaylorGreenFieldIsExactUpToTheMidpointSumFactor) {
+  // u = U sin kx cos ky, v = −U cos kx sin ky sampled at the faces; ψ = (U/k) sin kx sin ky, and
+  // the sum of the face values up a column is Σ_{m<j} cos(k(m+½)h) h = sin(kjh) h / (2 sin(kh/2)):
+  // the nodes get ψ · (kh/2)/sin(kh/2) exactly. One period per side: ψ = 0 on all four sides.
+  const int n = 32;
+  const TaylorGreen tg{1.0, 0.8, 0.0};
+  const MacGrid g(n, n, tg.length_m, tg.length_m);
+  const Field s = stream_function_at_nodes(tg.sample(g, 0.0));
+  const double k = tg.wavenumber(), h = g.dx();
+  const double factor = 0.5 * k * h / std::sin(0.5 * k * h);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const Vec2 p = s.position(i, j);
+      const double exact = tg.speed_m_per_s / k * std::sin(k * p.x) * std::sin(k * p.y);
+      EXPECT_NEAR(s(i, j), exact * factor, 1e-14) << i << "," << j;
+    }
+  for (int m = 0; m <= n; ++m) {
+    EXPECT_NEAR(s(m, 0), 0.0, 1e-14);
+    EXPECT_NEAR(s(m, n), 0.0, 1e-14);
+    EXPECT_NEAR(s(0, m), 0.0, 1e-14);
+    EXPECT_NEAR(s(n, m), 0.0, 1e-14);
+  }
+  // The vortex centred at (3L/4, L/4) turns clockwise (u > 0 above its centre, u < 0 below) and
+  // has ψ < 0 there, the sign convention of Ghia et al.
+  EXPECT_GT(tg.velocity({0.75, 0.3}, 0.0).x, 0.0);
+  EXPECT_LT(tg.velocity({0.75, 0.2}, 0.0).x, 0.0);
+  EXPECT_LT(s(3 * n / 4, n / 4), 0.0);
 }
 
 TEST(Tracers, FollowARigidRotationAndStayInTheDomain) {

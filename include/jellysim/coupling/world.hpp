@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jellysim/coupling/immersed_boundary.hpp"
+#include "jellysim/fluid/schemes.hpp"
 #include "jellysim/fluid/tracers.hpp"
 
 namespace jellysim::coupling {
@@ -30,6 +31,8 @@ struct TankSpec {
   int cells_x = 96;
   int cells_y = 128;
   std::string solver = "eulerian";
+  fluid::ConvectionScheme convection = fluid::ConvectionScheme::donor_cell;  ///< of the Eulerian solver
+  fluid::AdvectionScheme advection = fluid::AdvectionScheme::linear;        ///< of the semi-Lagrangian one
   std::string pressure_solver = "fft";
   double pressure_tolerance = 1e-8;  ///< relative max-norm residual of every pressure solve
   double viscosity_m2_per_s = 1.304e-5;

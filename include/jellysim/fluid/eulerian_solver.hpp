@@ -1,6 +1,7 @@
 #pragma once
 // The classical Eulerian method of thesis §4.1 (Griebel, Dornseifer & Neunhoeffer): explicit
-// predictor F, G (eq. 4.6) with donor-cell/central convective differences blended by γ, pressure
+// predictor F, G (eq. 4.6) with donor-cell/central convective differences blended by γ (or, beyond
+// the thesis, limited upwind-biased face values: FluidSettings::convection), pressure
 // Poisson equation (eq. 3.3), velocity correction (eq. 4.7), stability limits eqs. 4.8–4.9.
 #include "jellysim/fluid/fluid_solver.hpp"
 
@@ -16,7 +17,7 @@ class EulerianSolver final : public FluidSolver {
   double stable_time_step() const override;
   /// The predictor (eq. 4.6) adds Δt·a on the interior faces, then one projection.
   bool projects_body_acceleration_linearly() const override { return true; }
-  /// γ used in the last step.
+  /// γ used in the last step (0 with a limited convection scheme).
   double last_donor_cell_blend() const { return last_gamma_; }
 
  private:
@@ -24,6 +25,12 @@ class EulerianSolver final : public FluidSolver {
   double donor_cell_blend(double dt_s) const;
   /// Eq. 4.6 on the interior faces: F = u + Δt(ν∇²u − ∂(u²)/∂x − ∂(uv)/∂y + f_x), same for G.
   void compute_predictor(double dt_s, double gamma);
+  /// Eq. 4.6 with limited upwind-biased face values (settings().convection) instead of γ.
+  template <ConvectionScheme S>
+  void compute_limited_predictor(double dt_s);
+  /// Eq. 4.6 with the convective terms at face (i, j) given by the two callables.
+  template <class ConvectionU, class ConvectionV>
+  void compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at);
 
   Velocity predictor_;
   double last_gamma_ = 0.0;
@@ -34,6 +41,10 @@ class EulerianSolver final : public FluidSolver {
 double convection_u(const Velocity& vel, int i, int j, double gamma);
 /// Convective term ∂(uv)/∂x + ∂(v²)/∂y at the y-face (i, j).
 double convection_v(const Velocity& vel, int i, int j, double gamma);
+/// The same terms with the limited face values of a van_leer or koren scheme (donor_cell: γ = 1);
+/// the stencil reaches two samples upwind, wrapped along periodic axes of `b`.
+double convection_u_limited(const Velocity& vel, const Boundaries& b, int i, int j, ConvectionScheme scheme);
+double convection_v_limited(const Velocity& vel, const Boundaries& b, int i, int j, ConvectionScheme scheme);
 /// Five-point Laplacian of a face field at (i, j) (ghosts must be filled).
 double face_laplacian(const Field& f, int i, int j);
 

@@ -12,6 +12,7 @@
 #include "jellysim/fluid/grid.hpp"
 #include "jellysim/fluid/poisson.hpp"
 #include "jellysim/fluid/projection.hpp"
+#include "jellysim/fluid/schemes.hpp"
 
 namespace jellysim::fluid {
 
@@ -39,10 +40,16 @@ struct FluidSettings {
   /// smallest stable value of Griebel et al., γ = max(|u|Δt/Δx, |v|Δt/Δy), chosen every step.
   std::optional<double> donor_cell_blend{};
   TimeStepPolicy time_step_policy = TimeStepPolicy::reduce;
+  /// The limited schemes replace γ (donor_cell_blend is then unused) and need a smaller step:
+  /// see the second stability_time_step().
+  ConvectionScheme convection = ConvectionScheme::donor_cell;
 
   // Semi-Lagrangian method.
-  bool project_before_advection = false;  ///< the extra projection of §4.2.4
+  bool project_before_advection = false;  ///< the extra projection of §4.2.4 (linear advection only)
   double diffusion_tolerance = 1e-8;      ///< relative max-norm residual of eq. 4.17's CG solve
+  /// The compensated schemes also diffuse with Crank–Nicolson instead of backward Euler, so that
+  /// the whole step is second order in time (docs/fluids.md).
+  AdvectionScheme advection = AdvectionScheme::linear;
 };
 
 struct StepReport {
@@ -101,9 +108,21 @@ const std::vector<std::string>& fluid_solver_names();
 std::unique_ptr<FluidSolver> make_fluid_solver(std::string_view name, const MacGrid& grid,
                                                const FluidSettings& settings);
 
+/// The scheme names a solver offers: convection schemes for "eulerian", advection schemes for
+/// "semi-lagrangian"; the first is the thesis's.
+const std::vector<std::string>& scheme_names_for(std::string_view solver);
+/// Sets settings.convection ("eulerian") or settings.advection ("semi-lagrangian") from a name of
+/// scheme_names_for(solver); throws std::invalid_argument naming the allowed ones otherwise.
+void set_scheme(FluidSettings& settings, std::string_view solver, std::string_view scheme);
+
 /// Eqs. 4.8 and 4.9: τ · min(Δx/max|u|, Δy/max|v|, 1/(2ν) (1/Δx² + 1/Δy²)⁻¹). The maxima run
 /// over the faces and, when given, the prescribed side velocities (a moving lid).
 double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor,
                            const Boundaries* sides = nullptr);
+/// The same for a convection scheme. donor_cell: eqs. 4.8–4.9 as above. The limited schemes:
+/// 1/Δt = (2(max|u|/Δx + max|v|/Δy) + 1/Δt_viscous)/τ, i.e. a Courant sum of ½ (forward Euler with
+/// a limiter of range [0, 2] is TVD up to there) and eq. 4.9's viscous step, added as rates.
+double stability_time_step(const Velocity& vel, double viscosity_m2_per_s, double safety_factor,
+                           ConvectionScheme scheme, const Boundaries* sides = nullptr);
 
 }  // namespace jellysim::fluid

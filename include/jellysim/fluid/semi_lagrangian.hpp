@@ -2,6 +2,7 @@
 // Building blocks of Stam's semi-Lagrangian method (§4.2): back-traced advection and implicit
 // diffusion on the staggered grid.
 #include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/schemes.hpp"
 #include "jellysim/fluid/grid.hpp"
 
 namespace jellysim::fluid {
@@ -34,6 +35,48 @@ Vec2 back_trace(const Velocity& vel, const Boundaries& b, Vec2 x, Vec2 velocity_
 /// per-sample clamping of the stored range: a confined point always lies inside it); equals
 /// advect_velocity_reference up to round-off (the positions are computed in cells, not metres).
 void advect_velocity(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
+/// Per face, the smallest and largest of the samples an interpolation combined.
+struct VelocityBounds {
+  Velocity lo, hi;
+  explicit VelocityBounds(const MacGrid& g);
+};
+
+/// The advection of `quantity`'s faces along `carrier`: dst(x) = quantity(x − Δt·c(x − ½Δt·c(x)))
+/// with c the carrier (advect_velocity is carrier = quantity). A negative Δt traces forward: the
+/// reverse step of the compensated schemes. With `bounds`, also stores for each face the range
+/// of the four samples its interpolation used. Both inputs need filled ghosts.
+void advect_velocity_by(const Velocity& carrier, const Velocity& quantity, const Boundaries& b, double dt_s,
+                        Velocity& dst, VelocityBounds* bounds = nullptr);
+
+/// Error-compensated semi-Lagrangian advection (issue 20): MacCormack (Selle, Fedkiw, Kim, Liu &
+/// Rossignac 2008, "An unconditionally stable MacCormack method", J. Sci. Comput. 35) and BFECC
+/// (Kim, Liu, Llamas & Rossignac 2005, "FlowFixer: using BFECC for fluid simulation"). Both
+/// estimate the error of one trace by tracing back and forth, which makes them second order in
+/// space and time for smooth flows; each value is then clamped to the range of the samples the
+/// plain forward trace interpolated (Selle et al. §4), so no new extrema appear. Keeps its
+/// intermediate fields.
+class CompensatedAdvection {
+ public:
+  explicit CompensatedAdvection(const MacGrid& g);
+  /// dst = the advection of `quantity` along `carrier` by Δt with the scheme (linear: one trace
+  /// with bilinear interpolation; cubic: one trace with sample_monotone_cubic).
+  void advect(AdvectionScheme scheme, const Velocity& carrier, const Velocity& quantity, const Boundaries& b,
+              double dt_s, Velocity& dst);
+
+ private:
+  Velocity forward_, backward_;
+  VelocityBounds bounds_;
+};
+
+/// Monotone cubic interpolation of a field at a world position (Fedkiw, Stam & Jensen 2001,
+/// "Visual simulation of smoke", §5): a cubic Hermite curve through the 4 × 4 samples around the
+/// point, first along x on each row, then along y, with slopes set to zero where they disagree in
+/// sign with the interval's difference (or the difference is zero) and limited to three times it
+/// (Fritsch & Carlson 1980), so that the value never leaves the range of the 2 × 2 samples around
+/// the point. Samples beyond the stored ones wrap on a
+/// periodic axis (of `b`) and repeat the outermost one otherwise.
+double sample_monotone_cubic(const Field& f, const Boundaries& b, Vec2 p);
+
 /// The same advection written point by point with back_trace() and Field::sample() in world
 /// coordinates; the reference for tests and benchmarks.
 void advect_velocity_reference(const Velocity& src, const Boundaries& b, double dt_s, Velocity& dst);
@@ -48,6 +91,9 @@ class ImplicitDiffusion {
   /// Returns the CG iterations.
   int solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
             int max_iterations = 2000);
+  /// The explicit half of a Crank–Nicolson step: u ← (I + νΔt∇²) u on the interior faces (called
+  /// with ½νΔt; solve() with ½νΔt is the implicit half).
+  void apply_explicit(Velocity& vel, const Boundaries& b, double nu_dt_m2);
 
  private:
   Velocity r_, d_;

@@ -10,6 +10,10 @@ namespace jellysim::studies {
 
 struct TaylorGreenSettings {
   std::vector<std::string> solvers{"eulerian", "semi-lagrangian"};
+  /// The schemes each solver is run with (fluid::scheme_names_for): convection schemes of the
+  /// Eulerian solver, advection schemes of the semi-Lagrangian one.
+  std::vector<std::string> convection_schemes{"donor-cell", "van-leer", "koren"};
+  std::vector<std::string> advection_schemes{"linear", "maccormack", "bfecc", "cubic"};
   std::vector<int> grids{16, 32, 64, 128};  ///< cells per side
   fluid::TaylorGreen flow{};                       ///< L = 2π, U = 1, ν = 0.1
   double end_time_s = 1.0;
@@ -22,6 +26,7 @@ struct TaylorGreenSettings {
 
 struct TaylorGreenRun {
   std::string solver;
+  std::string scheme;
   int cells = 0;
   double dt_s = 0.0;
   int steps = 0;
@@ -32,6 +37,7 @@ struct TaylorGreenRun {
 
 struct ConvergenceOrder {
   std::string solver;
+  std::string scheme;
   int coarse_cells = 0;
   int fine_cells = 0;
   double order_l2 = 0.0;  ///< log2(e_coarse / e_fine) per halving of Δx
@@ -40,12 +46,15 @@ struct ConvergenceOrder {
 
 struct TaylorGreenResult {
   std::vector<TaylorGreenRun> runs;
-  std::vector<ConvergenceOrder> orders;  ///< between consecutive grids, per solver
-  /// Least-squares slope of log(error_l2) against log(Δx) over all grids of one solver.
-  double fitted_order_l2(const std::string& solver) const;
+  std::vector<ConvergenceOrder> orders;  ///< between consecutive grids, per solver and scheme
+  /// Least-squares slope of log(error_l2) against log(Δx) over all grids of one solver and scheme.
+  double fitted_order_l2(const std::string& solver, const std::string& scheme) const;
 };
 
-TaylorGreenRun run_taylor_green_once(const std::string& solver, int cells, const TaylorGreenSettings& s);
+/// The schemes of `solver` the settings ask for (convection_schemes or advection_schemes).
+const std::vector<std::string>& schemes_of(const TaylorGreenSettings& s, const std::string& solver);
+TaylorGreenRun run_taylor_green_once(const std::string& solver, const std::string& scheme, int cells,
+                                     const TaylorGreenSettings& s);
 TaylorGreenResult run_taylor_green(const TaylorGreenSettings& settings);
 
 /// `solver-cost`: time per step and per simulated second and accuracy for every pair of fluid
