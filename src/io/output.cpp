@@ -3,20 +3,98 @@
 #include "jellysim/core/errors.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <mutex>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace jellysim::io {
 
 namespace fs = std::filesystem;
+
+std::string os_reason(int error_number) { return std::generic_category().message(error_number); }
+
+namespace {
+
+// Random part of temporary names: unpredictable (a file planted at a guessed name cannot catch a
+// write), unique within the process by a counter.
+std::string temporary_suffix() {
+  static std::atomic<std::uint64_t> counter{0};
+  thread_local std::mt19937_64 rng{std::random_device{}()};
+  const std::uint64_t n = counter.fetch_add(1) ^ (rng() << 16);
+  char buf[24];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, n, 36);
+  return "-" + std::string(buf, end);
+}
+
+// Closes a descriptor on every path out.
+struct Descriptor {
+  int fd = -1;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+TemporaryFile create_temporary_beside(const fs::path& target) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    fs::path path = target;
+    path += ".tmp-" + std::to_string(::getpid()) + temporary_suffix();
+    // Exclusive: fails on anything already there, a symlink included (never followed).
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) return {std::move(path), fd};
+    if (errno != EEXIST) throw RunError("cannot write '" + target.string() + "': " + os_reason(errno));
+  }
+  throw RunError("cannot write '" + target.string() + "': no free temporary name beside it");
+}
+
+void write_all(int fd, std::string_view content, const fs::path& shown) {
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
+    }
+    content.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+void sync_file(const fs::path& path, const fs::path& shown) {
+  Descriptor d{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW)};
+  if (d.fd < 0) throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
+  if (::fsync(d.fd) != 0) throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
+}
+
+void write_file_atomically(const fs::path& target, std::string_view content) {
+  TemporaryFile tmp = create_temporary_beside(target);
+  try {
+    Descriptor d{tmp.fd};
+    write_all(d.fd, content, target);
+    if (::fsync(d.fd) != 0) throw RunError("cannot write '" + target.string() + "': " + os_reason(errno));
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp.path, ec);
+    throw;
+  }
+  std::error_code ec;
+  fs::rename(tmp.path, target, ec);
+  if (ec) {
+    fs::remove(tmp.path, ec);
+    throw RunError("cannot write '" + target.string() + "': " + ec.message());
+  }
+}
 
 /// The files a run wrote, kept on disk as the list grows, so a killed run still leaves it right.
 class RunManifest {
@@ -27,9 +105,9 @@ class RunManifest {
   void record(const std::string& relative) {
     const std::lock_guard lock(mutex_);
     if (!names_.insert(relative).second) return;
-    std::ofstream out(file_, std::ios::binary | std::ios::app);
-    out << relative << '\n';
-    if (!out) throw RunError("cannot write '" + file_.string() + "'");
+    Descriptor d{::open(file_.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC)};
+    if (d.fd < 0) throw RunError("cannot write '" + file_.string() + "': " + os_reason(errno));
+    write_all(d.fd, relative + '\n', file_);
   }
   void finish() {
     const std::lock_guard lock(mutex_);
@@ -40,15 +118,7 @@ class RunManifest {
   void write_whole() const {
     std::string text = header_;
     for (const std::string& n : names_) text += n + '\n';
-    const fs::path tmp = file_.string() + ".tmp-" + std::to_string(::getpid());
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      out << text;
-      if (!out) throw RunError("cannot write '" + file_.string() + "'");
-    }
-    std::error_code ec;
-    fs::rename(tmp, file_, ec);
-    if (ec) throw RunError("cannot write '" + file_.string() + "': " + ec.message());
+    write_file_atomically(file_, text);
   }
 
   std::mutex mutex_;
@@ -59,12 +129,20 @@ class RunManifest {
 
 namespace {
 
-/// A temporary of OutputDir (NAME.tmp-PID) that a killed run left behind.
+/// A temporary of OutputDir (NAME.tmp-PID-RANDOM, or NAME.tmp-PID of earlier versions) that a
+/// killed run left behind.
 bool is_leftover_temporary(const std::string& name) {
   const std::size_t at = name.rfind(".tmp-");
   if (at == std::string::npos || at + 5 == name.size()) return false;
-  return std::all_of(name.begin() + static_cast<std::ptrdiff_t>(at + 5), name.end(),
-                     [](char c) { return c >= '0' && c <= '9'; });
+  const std::string_view tail = std::string_view(name).substr(at + 5);
+  const std::size_t dash = tail.find('-');
+  const std::string_view pid = tail.substr(0, dash);
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto base36 = [&](char c) { return digit(c) || (c >= 'a' && c <= 'z'); };
+  if (pid.empty() || !std::all_of(pid.begin(), pid.end(), digit)) return false;
+  if (dash == std::string_view::npos) return true;
+  const std::string_view random = tail.substr(dash + 1);
+  return !random.empty() && std::all_of(random.begin(), random.end(), base36);
 }
 
 /// The relative paths an earlier run's manifest lists (none when there is no manifest).
@@ -145,33 +223,31 @@ OutputDir::OutputDir(std::filesystem::path dir) : dir_(std::move(dir)) {
 }
 
 std::filesystem::path OutputDir::temporary_for(std::string_view name) const {
-  // The process id keeps two concurrent writers of the same directory apart.
-  return dir_ / (std::string(name) + ".tmp-" + std::to_string(::getpid()));
+  TemporaryFile tmp = create_temporary_beside(dir_ / name);
+  ::close(tmp.fd);  // the writer opens it by name (an empty regular file of ours)
+  return tmp.path;
 }
 
 void OutputDir::commit(const std::filesystem::path& temporary, std::string_view name) const {
+  const fs::path target = dir_ / name;
   std::error_code ec;
-  std::filesystem::rename(temporary, dir_ / name, ec);
+  try {
+    sync_file(temporary, target);  // on disk before it takes the final name
+  } catch (...) {
+    std::filesystem::remove(temporary, ec);
+    throw;
+  }
+  std::filesystem::rename(temporary, target, ec);
   if (ec) {
     std::filesystem::remove(temporary, ec);
-    throw RunError("cannot write '" + (dir_ / name).string() + "': " + ec.message());
+    throw RunError("cannot write '" + target.string() + "': " + ec.message());
   }
   if (manifest_) manifest_->record(prefix_ + std::string(name));
 }
 
 void OutputDir::write_text(std::string_view name, std::string_view content) const {
-  const auto tmp = temporary_for(name);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw RunError("cannot write '" + (dir_ / name).string() + "'");
-    }
-  }
-  commit(tmp, name);
+  write_file_atomically(dir_ / name, content);
+  if (manifest_) manifest_->record(prefix_ + std::string(name));
 }
 
 void OutputDir::write_json(std::string_view name, const nlohmann::ordered_json& json) const {

@@ -6,6 +6,10 @@
 #include <fstream>
 #include <string>
 
+#include <cerrno>
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/output.hpp"
 
@@ -57,7 +61,11 @@ TEST(OutputDir, ALaterRunReplacesTheEarlierRunsOutputsCompletely) {
     first.write_text("summary.json", "{\"frames\": 5}");
     first.finish_manifest();
   }
-  touch(dir / "frames" / "f_9.png.tmp-4242");  // a temporary a killed run left
+  touch(dir / "frames" / "f_9.png.tmp-4242");           // temporaries killed runs left: this version's
+  touch(dir / "frames" / "f_8.png.tmp-4242-2x9kq0f3");  // names and earlier versions'
+  touch(dir / "f.png.tmp-42-");                         // not ours: a foreign file
+  EXPECT_THROW(OutputDir::for_run(dir, "test"), InputError);
+  fs::remove(dir / "f.png.tmp-42-");
   const OutputDir second = OutputDir::for_run(dir, "test");
   EXPECT_FALSE(fs::exists(dir / "frames"));  // emptied, so removed
   EXPECT_FALSE(fs::exists(dir / "meshes"));
@@ -108,6 +116,56 @@ TEST(OutputDir, AcceptsANewOrEmptyDirectory) {
   EXPECT_NO_THROW(OutputDir::for_run(fresh("new") / "nested", "test"));
   fs::remove_all(dir);
   fs::remove_all(fresh("new"));
+}
+
+TEST(SafeFiles, TemporariesAreNewUnpredictableRegularFiles) {
+  const fs::path dir = fresh("temporaries");
+  const OutputDir out(dir);
+  const fs::path a = out.temporary_for("frame.png");
+  const fs::path b = out.temporary_for("frame.png");
+  EXPECT_NE(a, b);
+  for (const fs::path& p : {a, b}) {
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(p))) << p;
+    EXPECT_EQ(fs::file_size(p), 0u);
+    EXPECT_EQ(p.filename().string().rfind("frame.png.tmp-" + std::to_string(::getpid()) + "-", 0), 0u) << p;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SafeFiles, APlantedSymlinkIsReplacedNeverWrittenThrough) {
+  const fs::path dir = fresh("symlink");
+  const OutputDir out(dir);
+  const fs::path victim = fresh("symlink_victim");
+  fs::create_directories(victim);
+  std::ofstream(victim / "precious.txt") << "keep";
+  fs::create_symlink(victim / "precious.txt", dir / "summary.json");
+  out.write_text("summary.json", "{}\n");
+  EXPECT_EQ(slurp(victim / "precious.txt"), "keep");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "summary.json")));
+  EXPECT_EQ(slurp(dir / "summary.json"), "{}\n");
+  fs::remove_all(dir);
+  fs::remove_all(victim);
+}
+
+TEST(SafeFiles, AWriteErrorNamesThePathAndTheOperatingSystemsReason) {
+  // /dev/full fails every write with ENOSPC, as a full disk does.
+  const int fd = ::open("/dev/full", O_WRONLY);
+  ASSERT_GE(fd, 0);
+  try {
+    write_all(fd, "data", "/results/metrics.csv");
+    FAIL() << "a write to /dev/full succeeded";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("'/results/metrics.csv'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(os_reason(ENOSPC)), std::string::npos) << e.what();
+  }
+  ::close(fd);
+  // A directory that does not exist: the reason is given too.
+  try {
+    write_file_atomically("/nonexistent-jellysim-dir/a.txt", "x");
+    FAIL();
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find(os_reason(ENOENT)), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -13,6 +13,23 @@ namespace jellysim::io {
 
 class RunManifest;
 
+/// A new file made exclusively beside `target` (TARGET.tmp-PID-RANDOM, O_CREAT|O_EXCL|O_NOFOLLOW:
+/// never an existing file or a planted symlink) and its open descriptor, for writing.
+struct TemporaryFile {
+  std::filesystem::path path;
+  int fd;
+};
+TemporaryFile create_temporary_beside(const std::filesystem::path& target);
+/// Writes all of `content` to `fd`; a failure throws RunError naming `shown` and the OS reason.
+void write_all(int fd, std::string_view content, const std::filesystem::path& shown);
+/// fsync of a written file (errors name `shown` and the OS reason).
+void sync_file(const std::filesystem::path& path, const std::filesystem::path& shown);
+/// Writes `target` through an exclusive temporary beside it, fsync, then rename: a reader sees
+/// the old file or the whole new one; errors name the target and the OS reason.
+void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+/// The operating system's text for an errno value (thread-safe).
+std::string os_reason(int error_number);
+
 class OutputDir {
  public:
   /// Creates the directory (and parents) if needed; throws RunError when that fails.
@@ -37,9 +54,10 @@ class OutputDir {
   /// Writes a JSON document (2-space indented, trailing newline) atomically.
   void write_json(std::string_view name, const nlohmann::ordered_json& json) const;
 
-  /// For writers that need a path (e.g. image libraries): returns a temporary path next to `name`;
-  /// call commit() to move it into place. A temporary that is not committed is removed by
-  /// discard() or left with a ".tmp-" name that no reader takes for a result.
+  /// For writers that need a path (e.g. image libraries): creates an empty temporary file next to
+  /// `name` exclusively (create_temporary_beside) and returns its path; commit() syncs it and
+  /// moves it into place. A temporary that is not committed keeps its ".tmp-" name, which no
+  /// reader takes for a result, and the next run into the directory removes it.
   std::filesystem::path temporary_for(std::string_view name) const;
   void commit(const std::filesystem::path& temporary, std::string_view name) const;
 
