@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -10,7 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "jellysim/core/errors.hpp"
 #include "jellysim/fluid/diagnostics.hpp"
+#include "jellysim/io/output.hpp"
 #include "jellysim/fluid/projection.hpp"
 
 namespace jellysim::io {
@@ -79,14 +82,17 @@ std::vector<double> cell_values(const fluid::Field& f) {
 }
 
 std::ofstream open_for_writing(const std::filesystem::path& path) {
+  errno = 0;
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot open " + path.string() + " for writing");
+  if (!out) throw RunError("cannot write '" + path.string() + "': " + os_reason(errno ? errno : EIO));
   return out;
 }
 
 void check_written(std::ostream& out, const std::filesystem::path& path) {
+  errno = 0;
   out.flush();
-  if (!out) throw std::runtime_error("failed writing " + path.string());
+  // The stream keeps no reason; the failed write(2) under it left errno (EIO when it did not).
+  if (!out) throw RunError("cannot write '" + path.string() + "': " + os_reason(errno ? errno : EIO));
 }
 
 /// Full double precision on the stream for the duration of one write.

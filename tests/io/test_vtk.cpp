@@ -1,6 +1,11 @@
 // VTK output for ParaView: binary appended arrays, zlib-compressed, that decode to exactly the
 // values written; named point and cell data; named parts in the .pvd collection.
 #include <gtest/gtest.h>
+
+#include <cerrno>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 #include <zlib.h>
 
 #include <cstdint>
@@ -128,6 +133,18 @@ TEST(VtkOutput, PointsGetTheirIndexAsId) {
   EXPECT_NE(text.find("NumberOfPoints=\"2\" NumberOfVerts=\"2\""), std::string::npos);
   EXPECT_EQ(read_array<std::int32_t>(text, "id"), (std::vector<std::int32_t>{0, 1}));
   std::filesystem::remove(path);
+}
+
+TEST(Vtk, AFullDiskIsReportedWithThePathAndTheReason) {
+  // /dev/full fails every write with ENOSPC, as a full disk does.
+  const fluid::FlowState s(fluid::MacGrid(8, 8, 1.0, 1.0));
+  try {
+    write_flow_vti(std::filesystem::path("/dev/full"), s);
+    FAIL() << "writing to /dev/full succeeded";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("'/dev/full'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(os_reason(ENOSPC)), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -75,7 +75,13 @@ inline constexpr std::string_view kManifestName = "manifest.txt";
 template <class Writer>
 void write_via_temporary(const OutputDir& out, const std::string& name, Writer&& writer) {
   const auto tmp = out.temporary_for(name);
-  writer(tmp);
+  try {
+    writer(tmp);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);  // a failed write leaves nothing behind
+    throw;
+  }
   out.commit(tmp, name);
 }
 
