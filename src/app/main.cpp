@@ -91,7 +91,14 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
                    const RunOptions& o) {
   js::experiments::Context ctx{js::experiments::default_config(e), make_progress(!o.quiet)};
   if (scene_file) ctx.config.merge(*scene_file);
-  for (const std::string& s : o.sets) ctx.config.set(s);
+  for (const std::string& s : o.sets) {
+    const std::string key = s.substr(0, s.find('='));
+    if (key == "scene")  // the kind picks the parameter table: it comes from the file, not --set
+      throw js::InputError("--set scene: the scene kind cannot be changed by --set; give a scene file instead");
+    if (o.duration && key == "duration")
+      throw js::InputError("--duration and --set duration both give the duration: give it once");
+    ctx.config.set(s);
+  }
   if (o.duration) {
     if (!ctx.config.has("duration")) throw js::InputError("--duration: experiment '" + e.name + "' has no duration");
     ctx.config.set("duration=" + js::io::format_double(*o.duration));

@@ -195,7 +195,19 @@ void Config::set(std::string_view assignment) {
   if (eq == std::string_view::npos || eq == 0) {
     throw InputError("--set '" + std::string(assignment) + "': expected key=value, e.g. --set duration=10");
   }
+  // One assignment is one line: a line break (or NUL) would let TOML read more keys than the one
+  // named, or drop the rest.
+  if (assignment.find_first_of(std::string_view("\n\r\0", 3)) != std::string_view::npos)
+    throw InputError("--set '" + std::string(assignment.substr(0, eq)) +
+                     "=...': the value contains a line break; one --set sets one key");
   const std::string key(assignment.substr(0, eq));
+  for (std::string_view rest = key;;) {  // a.b.c: no empty part
+    const auto dot = rest.find('.');
+    if (rest.substr(0, dot).empty())
+      throw InputError("--set '" + std::string(assignment) + "': the key '" + key + "' has an empty part");
+    if (dot == std::string_view::npos) break;
+    rest = rest.substr(dot + 1);
+  }
   const toml::table parsed = parse_override_value(assignment.substr(eq + 1));
   // Build the nested overlay {a = {b = value}} for key "a.b" and merge it.
   toml::table overlay;

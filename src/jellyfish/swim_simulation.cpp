@@ -289,7 +289,15 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
       stats.krylov_iterations += s.krylov_iterations;
     }
     if (!s.failure.empty()) {
-      if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) on_frame(*this);  // keep the state that failed
+      // Keep the state that failed as a last frame, if it can be drawn at all (a non-finite state
+      // may not be): the failure itself is the message either way.
+      if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) {
+        try {
+          on_frame(*this);
+        } catch (const std::exception& e) {
+          return sim::StepResult::failed_with(s.failure + " (its last frame could not be written: " + e.what() + ")");
+        }
+      }
       return sim::StepResult::failed_with(s.failure);
     }
     return {};

@@ -128,7 +128,8 @@ ParameterTable make_jellyfish_scene() {
       number("coupling.safety_factor", "0.5", "", Range{0.0, 1.0, true, false}, "τ on the CFL/viscous limits of eqs. 4.8–4.9"),
       number("coupling.max_dt", "0.016666666666666666", "s", kPositive,
              "largest step: two per 1/30 s frame (docs/jellyfish.md: the step study)"),
-      number("coupling.min_dt", "1e-6", "s", kPositive, "a smaller stable step stops the run"),
+      number("coupling.min_dt", "1e-6", "s", kPositive,
+             "a smaller stable step stops the run; below coupling.max_dt and output.frame_interval"),
       number("coupling.krylov_tolerance", "1e-6", "", Range{0.0, 1.0, true, true},
              "relative residual of the semi-implicit solve"),
       integer("coupling.krylov_max_iterations", "200", 1, 100000, "GMRES iterations per step at most"),
@@ -145,7 +146,8 @@ ParameterTable make_jellyfish_scene() {
              "|θ − θ_r| of any joint = structural (a fold)"),
 
       number("output.frame_interval", "0.03333333333333333", "s", kPositive,
-             "time between recorded frames, at most the duration"),
+             "time between recorded frames, at most the duration and at least coupling.min_dt; "
+             "at most 10⁶ frames per run"),
       boolean("output.pictures", "true", "a 2D picture per frame (frames/slice_NNNN.png)"),
       integer("output.picture_every", "1", 1, 1000000, "draw every n-th frame"),
       choice("output.picture_quantity", "vorticity", {"vorticity", "speed"}, "what the pictures colour"),
@@ -321,6 +323,9 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
 
 }  // namespace
 
+/// More recorded frames than a run can write or anyone view (a million at 30 fps is 9 hours).
+constexpr double kMaxFrames = 1e6;
+
 jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   const Reader r(c, jellyfish_scene());
   r.validate_all();
@@ -330,6 +335,10 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   if (s.frame_interval_s > s.duration_s)
     throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
                      " is out of range (0, duration = " + io::format_number(s.duration_s) + "]");
+  if (!(s.duration_s / s.frame_interval_s <= kMaxFrames))
+    throw InputError("fields 'duration' = " + io::format_number(s.duration_s) + " s and 'output.frame_interval' = " +
+                     io::format_number(s.frame_interval_s) + " s ask for " + io::format_number(s.duration_s / s.frame_interval_s) +
+                     " frames; at most " + io::format_number(kMaxFrames) + " (raise the interval or shorten the run)");
 
   coupling::TankSpec& t = s.tank;
   t.width_m = r.number("tank.width");
@@ -373,6 +382,14 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   k.safety_factor = r.number("coupling.safety_factor");
   k.max_time_step_s = r.number("coupling.max_dt");
   k.min_time_step_s = r.number("coupling.min_dt");
+  // Contradictions are input errors, not a numerical instability at t = 0.
+  if (!(k.min_time_step_s < k.max_time_step_s))
+    throw InputError("field 'coupling.min_dt' = " + io::format_number(k.min_time_step_s) +
+                     " must be below coupling.max_dt = " + io::format_number(k.max_time_step_s));
+  if (!(s.frame_interval_s >= k.min_time_step_s))
+    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
+                     " is below coupling.min_dt = " + io::format_number(k.min_time_step_s) +
+                     ": steps land on every frame, so each would be shorter than the smallest allowed");
   k.krylov_tolerance = r.number("coupling.krylov_tolerance");
   k.krylov_max_iterations = static_cast<int>(r.integer("coupling.krylov_max_iterations"));
   k.preconditioner = *coupling::preconditioner_from_string(r.choice("coupling.preconditioner"));

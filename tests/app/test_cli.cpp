@@ -90,6 +90,41 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_NE(r.output.find("swinging-bar"), std::string::npos) << r.output;  // lists known names
 }
 
+// Issue 23's reproducers: each was silently ignored, run, or reported as a divergence; each is
+// now a usage error naming what is wrong, with nothing written.
+TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
+  const fs::path dir = fresh_dir("hostile");
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--set scene=driven-cavity", "scene kind"},
+      {"--duration 0.05 --set duration=0.1", "give it once"},
+      {"--set 'duration=0.1\ntank.cells=[8, 8]'", "line break"},
+      {"--set a..b=1", "empty part"},
+      {"--set coupling.min_dt=0.1 --set coupling.max_dt=0.01", "coupling.min_dt"},
+      {"--duration 1e18", "frames"},
+      {"--set output.frame_interval=1e-9", "output.frame_interval"},
+      {"--set output.frame_interval=1e-7 --duration 0.01", "coupling.min_dt"},
+  };
+  for (const auto& [args, named] : cases) {
+    const Result r = run_cli("simulate --quiet --out " + dir.string() + " " + args);  // '…' keeps the line break
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir)) << args;
+  }
+}
+
+// A modulus of 1e200 Pa made the run crash (a NaN position indexed out of the fluid grid); now the
+// non-finite state is a numerical instability with its time and step, and summary.json says failed.
+TEST(Cli, ANonFiniteStateStopsTheRunWithWhenAndWhere) {
+  const fs::path dir = fresh_dir("non_finite");
+  const Result r = run_cli("simulate --quiet --duration 0.2 --set jellyfish.bell_modulus=1e200 --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("non-finite"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at t = "), std::string::npos) << r.output;
+  const auto summary = summary_of(dir);
+  EXPECT_EQ(summary["status"], "failed");
+  fs::remove_all(dir);
+}
+
 TEST(Cli, BadSetValueNamesFieldAndLeavesNoOutput) {
   const fs::path dir = fresh_dir("bad_set");
   Result r = run_cli("experiment swinging-bar --quiet --out " + dir.string() + " --set bar.point_mass=-1");

@@ -81,9 +81,10 @@ class Field {
   /// Bilinear interpolation at a world position; outside the stored samples (ghosts included)
   /// the position is clamped onto them.
   double sample(Vec2 p) const {
-    // Continuous sample index, clamped to the stored range [-1, count] (ghosts included).
-    const double fx = std::clamp((p.x - origin_x_) * inv_dx_, -1.0, static_cast<double>(count_x_));
-    const double fy = std::clamp((p.y - origin_y_) * inv_dy_, -1.0, static_cast<double>(count_y_));
+    // Continuous sample index, clamped to the stored range [-1, count] (ghosts included); a NaN
+    // position (a diverged run) samples at -1 instead of indexing out of the field.
+    const double fx = clamp_index((p.x - origin_x_) * inv_dx_, count_x_);
+    const double fy = clamp_index((p.y - origin_y_) * inv_dy_, count_y_);
     const int i0 = std::min(static_cast<int>(fx + 1.0) - 1, count_x_ - 1);  // floor, as fx ≥ −1
     const int j0 = std::min(static_cast<int>(fy + 1.0) - 1, count_y_ - 1);
     const double tx = fx - i0;
@@ -94,6 +95,11 @@ class Field {
     return (1.0 - ty) * bottom + ty * top;
   }
   void fill(double value);
+  /// f clamped to [−1, count]; NaN → −1.
+  static double clamp_index(double f, int count) {
+    if (!(f > -1.0)) return -1.0;
+    return f < count ? f : static_cast<double>(count);
+  }
   /// Largest |value| over the interior samples (NaN if any sample is NaN).
   double max_abs_interior() const;
 
