@@ -18,6 +18,11 @@ using io::Range;
 constexpr double kDegree = std::numbers::pi / 180.0;
 const Range kPositive = Range::positive();
 const Range kNonNegative = Range::non_negative();
+// Upper bounds where a larger value is no longer the model (issue 23: 1e200 Pa ran into NaN).
+const Range kModulus{0.0, 1e9, true, false};          ///< Pa: up to stiff plastics; mesoglea ~1e2–1e4
+const Range kModulusOrZero{0.0, 1e9, false, false};
+const Range kTankSize{0.0, 100.0, true, false};       ///< m
+const Range kStiffness{0.0, 1e9, true, false};        ///< N/m of an obstacle's tethers
 const Range kAny{};
 
 fluid::BoundaryType read_boundary(const std::string& name) { return *fluid::boundary_type_from_string(name); }
@@ -49,8 +54,8 @@ ParameterTable make_jellyfish_scene() {
       number("duration", "14.285714285714286", "s", kPositive, "simulated time: 10 contraction cycles at 0.7 Hz"),
       {"objects", Type::tables, "[]", "", {}, {}, 0, "more jellyfish and rigid obstacles, as [[objects]] tables (docs/scenes.md)"},
 
-      number("tank.width", "0.24", "m", kPositive, "six bell diameters"),
-      number("tank.height", "0.32", "m", kPositive, "tank height"),
+      number("tank.width", "0.24", "m", kTankSize, "six bell diameters"),
+      number("tank.height", "0.32", "m", kTankSize, "tank height"),
       {"tank.cells", Type::integers, "[96, 128]", "", Range::closed(4, 4096), {}, 2,
        "fluid cells along x and y [nx, ny]: 2.5 mm, 16 across the bell"},
       choice("tank.solver", "eulerian", fluid::fluid_solver_names(),
@@ -90,9 +95,9 @@ ParameterTable make_jellyfish_scene() {
              "angular: string of points with angular springs (Fig. 7.2 right); mesh: Fig. 7.2 left"),
       number("jellyfish.spacing", "0.0", "m", kNonNegative, "marker spacing; 0: Peskin's rule, half a fluid cell"),
       integer("jellyfish.min_segments_per_side", "6", 2, 1000, "at least this many umbrella springs from aperture to apex"),
-      number("jellyfish.bell_modulus", "1.186e6", "Pa", kPositive,
+      number("jellyfish.bell_modulus", "1.186e6", "Pa", kModulus,
              "λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
-      number("jellyfish.muscle_modulus", "4.0e5", "Pa", kNonNegative, "λ of the circumferential muscle (§7.1)"),
+      number("jellyfish.muscle_modulus", "4.0e5", "Pa", kModulusOrZero, "λ of the circumferential muscle (§7.1)"),
       number("jellyfish.bending_factor", "10.0", "", kNonNegative, "umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
       number("jellyfish.tentacle_volume_fraction", "3.0", "", kPositive,
              "tentacle springs' volume relative to the umbrella's (thesis: 0.01, stretches > 100 %)"),
@@ -105,7 +110,8 @@ ParameterTable make_jellyfish_scene() {
              "part of the cycle spent contracting (Fig. 6.10)"),
       number("jellyfish.aperture_expansion_exponent", "2.0", "", Range::closed(1.0, 10.0),
              "aperture springs re-expand more slowly (Fig. 7.5); 1: all alike"),
-      number("jellyfish.neural_delay", "0.03", "s", kNonNegative, "activation delay from the margin to the apex (§6.2)"),
+      number("jellyfish.neural_delay", "0.03", "s", Range::closed(0.0, 10.0),
+             "activation delay from the margin to the apex (§6.2)"),
       boolean("jellyfish.controller", "false", "eq. 7.2 closed-loop controller instead of the open-loop function"),
       number("jellyfish.controller_alpha", "2.0", "", kPositive, "α of eq. 7.2"),
       number("jellyfish.trochoid_skew", "0.6", "", Range{0.0, 1.0, false, true}, "λ of the trochoid contraction function"),
@@ -278,7 +284,7 @@ jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& ty
       for (std::size_t k = 0; k + 1 < xy.size(); k += 2) spec.vertices_m.push_back({xy[k], xy[k + 1]});
     }
   }
-  if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", io::Range::positive());
+  if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", kStiffness);
   if (o.has("velocity")) spec.motion.velocity_m_per_s = o.vec2("velocity");
   if (o.has("amplitude")) spec.motion.amplitude_m = o.vec2("amplitude");
   if (o.has("frequency")) spec.motion.frequency_hz = o.number("frequency", io::Range::non_negative());

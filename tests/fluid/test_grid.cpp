@@ -1,6 +1,8 @@
 // MAC grid geometry, staggering, world↔grid conversion and bilinear sampling.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 #include "jellysim/fluid/boundary.hpp"
@@ -51,6 +53,16 @@ TEST(Field, BilinearSamplingIsExactForLinearFunctions) {
 
 // The largest |value| over the interior: ghosts ignored, every position in a row counts (rows of
 // 7 and 8 u-faces test the unrolled part and the remainder), and NaN anywhere is reported.
+TEST(Field, SamplingAtANaNPositionStaysInsideTheField) {
+  // A diverged run once sampled at NaN: the index became INT_MIN and the read left the field.
+  const MacGrid g(6, 4, 1.2, 0.8);
+  Field f(g, kXFaces, 3.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_DOUBLE_EQ(f.sample({nan, 0.3}), 3.0);
+  EXPECT_DOUBLE_EQ(f.sample({0.3, nan}), 3.0);
+  EXPECT_DOUBLE_EQ(f.sample({std::numeric_limits<double>::infinity(), -1e300}), 3.0);
+}
+
 TEST(Field, MaxAbsInteriorSeesEverySampleAndNaN) {
   for (int nx : {6, 7}) {
     Field u(MacGrid(nx, 3, 1.0, 1.0), kXFaces);
