@@ -4,6 +4,7 @@
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/interrupt.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
@@ -109,8 +110,13 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   }
   auto run = e.prepare(ctx);
   const js::io::OutputDir out = js::io::OutputDir::for_run(o.out, e.name);
+  js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
   const js::experiments::Outcome outcome = run(out);
   out.finish_manifest();
+  if (const int signal = js::core::interrupt_signal(); signal != 0 && !outcome.failure.empty()) {
+    std::cerr << "jellysim: " << outcome.failure << "; results so far are in " << out.path().string() << "\n";
+    return 128 + signal;
+  }
   if (!outcome.failure.empty()) {
     std::cerr << "jellysim: run failed: " << outcome.failure << "\n  (results so far are in " << out.path().string()
               << ")\n";

@@ -1,6 +1,7 @@
 // The main job (`jellysim run`): the default jellyfish simulated in 2D (thesis §7.1, Fig. 8.21),
 // then extrapolated to a lit, noisy 3D animation (§7.2–7.4) written as MP4, glTF, PNG frames,
 // meshes and an HTML viewer, with the swimming metrics and summary.json.
+#include "jellysim/core/interrupt.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
@@ -47,8 +48,12 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
         },
         rec.obstacle_outlines, rec.tracers);
     figures["animation"] = anim.figures();
-    write_summary(out, "run", ctx.config, figures, rec.stats.failure);
-    return Outcome{rec.stats.failure};
+    std::string failure = rec.stats.failure;
+    if (failure.empty() && core::interrupt_signal() != 0 && anim.frames < rec.frames.size())
+      failure = "interrupted by " + core::signal_name(core::interrupt_signal()) + " while rendering, after " +
+                std::to_string(anim.frames) + " of " + std::to_string(rec.frames.size()) + " frames";
+    write_summary(out, "run", ctx.config, figures, failure);
+    return Outcome{failure};
   };
 }
 

@@ -1,5 +1,7 @@
 #include "jellysim/experiments/experiment.hpp"
 
+#include "jellysim/core/interrupt.hpp"
+
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -87,7 +89,8 @@ void write_summary(const io::OutputDir& out, const std::string& command, const i
   nlohmann::ordered_json summary;
   summary["jellysim_version"] = JELLYSIM_VERSION;
   summary["command"] = command;
-  summary["status"] = failure.empty() ? "ok" : "failed";
+  // A stop request (SIGINT/SIGTERM) ends a run early through its failure path: "interrupted".
+  summary["status"] = failure.empty() ? "ok" : core::interrupt_signal() != 0 ? "interrupted" : "failed";
   if (!failure.empty()) summary["failure"] = failure;
   for (const auto& [key, value] : figures.items()) summary[key] = value;
   summary["config"] = config.to_json();

@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "jellysim/core/interrupt.hpp"
 #include "jellysim/geometry/marine_snow.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/geometry/rendering_model.hpp"
@@ -445,7 +446,9 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   std::vector<geometry::FrameGeometry> parts(school.size());
   CacheRecorder caches(school.size());
   const bool caching = s.pc2 || s.mdd || s.usda || s.glb;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
+  std::size_t rendered = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k, ++rendered) {
+    if (k > 0 && core::interrupt_signal() != 0) break;  // SIGINT/SIGTERM: keep the frames so far
     auto t0 = Clock::now();
     for (std::size_t j = 0; j < school.size(); ++j) builders[j].build(school[j][k], parts[j]);
     geometry::FrameGeometry g;
@@ -518,9 +521,9 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
     result.glb_bytes = glb.size();
     if (s.viewer) write_viewer(s, glb, out, result);
   }
-  result.frames = frames.size();
-  result.geometry_seconds_per_frame = geometry_s / static_cast<double>(frames.size());
-  result.render_seconds_per_frame = pixels ? render_s / static_cast<double>(frames.size()) : 0.0;
+  result.frames = rendered;
+  result.geometry_seconds_per_frame = geometry_s / static_cast<double>(std::max<std::size_t>(rendered, 1));
+  result.render_seconds_per_frame = pixels ? render_s / static_cast<double>(std::max<std::size_t>(rendered, 1)) : 0.0;
   return result;
 }
 

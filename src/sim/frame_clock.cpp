@@ -1,5 +1,7 @@
 #include "jellysim/sim/frame_clock.hpp"
 
+#include "jellysim/core/interrupt.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -70,6 +72,12 @@ ClockOutcome run_frames(FrameClock& clock, const ClockedRun& run, const Progress
     }
     if (run.after_frame_check) run.after_frame_check();
     if (clock.finished(run.time())) return outcome;
+    if (const int signal = core::interrupt_signal()) {  // SIGINT/SIGTERM: stop at this step boundary
+      outcome.failure = "interrupted by " + core::signal_name(signal) + " at t = " + std::to_string(run.time()) +
+                        " s (step " + std::to_string(outcome.steps) + ")";
+      outcome.interrupted = true;
+      return outcome;
+    }
     const StepResult r = run.step(clock.target());
     if (r.kind == StepResult::Kind::failed) {
       outcome.failure = r.failure;

@@ -2,9 +2,12 @@
 // early stops and failures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <csignal>
 #include <cmath>
 #include <vector>
 
+#include "jellysim/core/interrupt.hpp"
 #include "jellysim/sim/frame_clock.hpp"
 
 namespace {
@@ -106,3 +109,26 @@ TEST(FrameClock, AnEarlyStopRecordsTheLastStateAndAFailureStopsAtOnce) {
 }
 
 }  // namespace
+
+TEST(FrameClock, AStopRequestEndsTheLoopAtTheNextStepBoundaryAndSaysWhen) {
+  FrameClock clock(0.1, 1.0, 1e-12, FrameClock::Ending::at_duration);
+  double t = 0.0;
+  int frames = 0;
+  ClockedRun run;
+  run.time = [&] { return t; };
+  run.frame = [&](std::int64_t) {
+    ++frames;
+    return std::string();
+  };
+  run.step = [&](double target) -> StepResult {
+    t = std::min(target, t + 0.05);
+    if (t >= 0.3) jellysim::core::request_interrupt(SIGINT);  // as the handler would, mid-run
+    return {};
+  };
+  const auto outcome = run_frames(clock, run);
+  jellysim::core::clear_interrupt();
+  EXPECT_TRUE(outcome.interrupted);
+  EXPECT_NEAR(t, 0.3, 1e-12);  // no step after the request
+  EXPECT_EQ(frames, 4);       // 0, 0.1, 0.2, 0.3: the state reached is recorded
+  EXPECT_EQ(outcome.failure, "interrupted by SIGINT at t = 0.300000 s (step 6)");
+}

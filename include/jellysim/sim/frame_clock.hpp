@@ -76,6 +76,7 @@ struct ClockedRun {
 struct ClockOutcome {
   std::string failure;       ///< empty: the run reached its duration or stopped early
   bool stopped_early = false;
+  bool interrupted = false;  ///< stopped by SIGINT/SIGTERM (core::interrupt_signal); failure says when
   std::int64_t steps = 0;    ///< steps taken by the loop
 };
 

@@ -1,0 +1,77 @@
+// SIGINT / SIGTERM during a run (issue 23): the run stops at the next step boundary, keeps what it
+// computed, says so in summary.json and exits with 128 + the signal, leaving no temporary file.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include "../cli_runner.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Starts jellysim with `args` (no shell), returns its pid.
+pid_t spawn_jellysim(const std::vector<std::string>& args) {
+  std::vector<std::string> all{JELLYSIM_CLI_PATH};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
+}
+
+// Waits (up to a minute) until `file` exists: the run is then inside its step loop.
+bool wait_for(const fs::path& file) {
+  for (int k = 0; k < 6000; ++k) {
+    if (fs::exists(file)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+void expect_interrupted_run(int signal_number, int expected_exit) {
+  const fs::path dir = jellysim::testing::fresh_scratch_dir("signal_" + std::to_string(signal_number));
+  const pid_t pid = spawn_jellysim({"simulate", "--quiet", "--out", dir.string()});
+  ASSERT_GT(pid, 0);
+  if (!wait_for(dir / "frames" / "body_000002.vtp")) {  // the third frame: inside the step loop
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    FAIL() << "the run never reached its third frame";
+  }
+  ::kill(pid, signal_number);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping";
+  EXPECT_EQ(WEXITSTATUS(status), expected_exit);
+  const std::string summary = jellysim::testing::read_text_file(dir / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("interrupted by " + std::string(signal_number == SIGINT ? "SIGINT" : "SIGTERM")),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "metrics.csv"));
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+TEST(Signals, SigintStopsTheRunKeepsItsResultsAndExits130) { expect_interrupted_run(SIGINT, 130); }
+TEST(Signals, SigtermStopsTheRunKeepsItsResultsAndExits143) { expect_interrupted_run(SIGTERM, 143); }
+
+}  // namespace
