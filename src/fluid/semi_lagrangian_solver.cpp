@@ -16,7 +16,7 @@ double SemiLagrangianSolver::stable_time_step() const { return std::numeric_limi
 
 StepReport SemiLagrangianSolver::step(double dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("time step must be positive");
-  if (settings_.advection != AdvectionScheme::linear) return compensated_step(dt_s);
+  if (settings_.advection != AdvectionScheme::linear) return second_order_step(dt_s);
   const Boundaries& b = settings_.boundaries;
   StepReport report;
   report.dt_s = dt_s;
@@ -73,7 +73,7 @@ bool SemiLagrangianSolver::history_continues() const {
 // near 1; measured in the driven cavity, documented in docs/fluids.md.) The trajectories are
 // traced in the velocity extrapolated to t + ½Δt, except on the first step and after an edit of
 // the flow between steps.
-StepReport SemiLagrangianSolver::compensated_step(double dt_s) {
+StepReport SemiLagrangianSolver::second_order_step(double dt_s) {
   const Boundaries& b = settings_.boundaries;
   const MacGrid& g = state_.grid;
   StepReport report;

@@ -1,10 +1,10 @@
 #pragma once
 // Stam's semi-Lagrangian method, thesis §4.2.4: forces, implicit diffusion (eq. 4.17), optional
 // projection, back-traced advection, projection (eq. 4.14). Unconditionally stable.
-// With the compensated advection schemes (MacCormack, BFECC) the step is second order in time
-// (issue 20): Crank–Nicolson along the trajectories, the pressure gradient split between the
-// departure and the arrival point, and the trajectories traced in the velocity extrapolated to
-// the middle of the step (docs/fluids.md).
+// With the other advection schemes (MacCormack, BFECC, monotone cubic) the step is second order
+// in time (issue 20): Crank–Nicolson along the trajectories, the pressure gradient split between
+// the departure and the arrival point, and the trajectories traced in the velocity extrapolated
+// to the middle of the step (docs/fluids.md).
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/semi_lagrangian.hpp"
 
@@ -18,7 +18,7 @@ class SemiLagrangianSolver final : public FluidSolver {
   double stable_time_step() const override;
 
  private:
-  StepReport compensated_step(double dt_s);
+  StepReport second_order_step(double dt_s);
   /// True when the velocity and pressure are exactly what the last step left (nobody edited them
   /// in between), so that the history may be extrapolated.
   bool history_continues() const;

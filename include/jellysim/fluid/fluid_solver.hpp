@@ -47,8 +47,8 @@ struct FluidSettings {
   // Semi-Lagrangian method.
   bool project_before_advection = false;  ///< the extra projection of §4.2.4 (linear advection only)
   double diffusion_tolerance = 1e-8;      ///< relative max-norm residual of eq. 4.17's CG solve
-  /// The compensated schemes also diffuse with Crank–Nicolson instead of backward Euler, so that
-  /// the whole step is second order in time (docs/fluids.md).
+  /// Every scheme but linear also takes the second-order step (Crank–Nicolson along the
+  /// trajectories, incremental pressure, extrapolated carrier; docs/fluids.md).
   AdvectionScheme advection = AdvectionScheme::linear;
 };
 
