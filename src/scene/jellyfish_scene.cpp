@@ -1,14 +1,19 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
+#include "jellysim/io/output.hpp"
 
 namespace jellysim::scene {
 
@@ -214,23 +219,56 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
   return j;
 }
 
-/// Polygon vertices from a text file: one "x y" or "x,y" pair (metres) per line; '#' comments.
+/// Limits of a polygon file: a few MiB of text and 10,000 vertices are far beyond any obstacle
+/// outline, and the polygon checks are quadratic in the vertex count.
+constexpr std::uintmax_t kMaxPolygonFileBytes = 4u << 20;
+constexpr std::size_t kMaxPolygonVertices = 10000;
+
+/// One number filling the whole token (strict: "O.6" or "1.2.3" are not numbers).
+std::optional<double> parse_number(std::string_view token) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// Polygon vertices from a text file: one "x y" or "x,y" pair (metres) per line; '#' starts a
+/// comment; blank lines are skipped. Anything else is an error naming the line: a regular file
+/// only (not a directory or a device such as /dev/zero), at most kMaxPolygonFileBytes.
 std::vector<Vec2> read_polygon_file(const std::string& path, const std::string& where) {
-  std::ifstream in(path);
-  if (!in) throw InputError(where + ": cannot read polygon file '" + path + "'");
+  const std::string file = where + ": polygon file '" + path + "'";
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(file + " cannot be read: " + (ec ? ec.message() : "no such file"));
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(file + " is not a regular file (a directory or a device)");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec || bytes > kMaxPolygonFileBytes)
+    throw InputError(file + " is " + std::to_string(bytes) + " bytes; at most " + std::to_string(kMaxPolygonFileBytes));
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file + " cannot be read: " + io::os_reason(errno ? errno : EACCES));
   std::vector<Vec2> points;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream fields(line);
-    Vec2 p;
-    if (!(fields >> p.x)) continue;  // blank line
-    std::string extra;
-    if (!(fields >> p.y) || (fields >> extra) || !std::isfinite(p.x) || !std::isfinite(p.y))
-      throw InputError(where + ": polygon file '" + path + "' line " + std::to_string(number) +
-                       ": expected two numbers \"x y\"");
-    points.push_back(p);
+    std::vector<std::string_view> tokens;
+    for (std::size_t at = line.find_first_not_of(" \t\r"); at != std::string::npos;) {
+      const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+      tokens.push_back(std::string_view(line).substr(at, end - at));
+      at = line.find_first_not_of(" \t\r", end);
+    }
+    if (tokens.empty()) continue;  // blank or comment line
+    const auto x = parse_number(tokens[0]);
+    const auto y = tokens.size() > 1 ? parse_number(tokens[1]) : std::nullopt;
+    if (tokens.size() != 2 || !x || !y)
+      throw InputError(file + " line " + std::to_string(number) + ": expected two numbers \"x y\", got \"" +
+                       line.substr(0, 60) + "\"");
+    if (points.size() == kMaxPolygonVertices)
+      throw InputError(file + " has more than " + std::to_string(kMaxPolygonVertices) + " vertices");
+    points.push_back({*x, *y});
   }
   return points;
 }

@@ -127,6 +127,48 @@ TEST(Cli, PhysicalParametersHaveUpperBounds) {
   }
 }
 
+// A polygon obstacle's file (issue 23): a regular file of at most a few MiB and 10,000 vertices,
+// every non-blank line exactly two numbers; anything else is refused naming the file and line.
+TEST(Cli, PolygonFilesAreReadStrictly) {
+  const fs::path dir = fresh_dir("polygon_files");
+  fs::create_directories(dir);
+  const std::string scene_text = read_file(fs::path(JELLYSIM_SOURCE_DIR) / "scenes/obstacles.toml");
+  const std::string rock = "file = \"scenes/rock.txt\"";
+  ASSERT_NE(scene_text.find(rock), std::string::npos);
+  auto run_with = [&](const fs::path& polygon) {
+    std::string text = scene_text;
+    text.replace(text.find(rock), rock.size(), "file = \"" + polygon.string() + "\"");
+    std::ofstream(dir / "scene.toml") << text;
+    return run_cli("simulate " + (dir / "scene.toml").string() + " --quiet --duration 0.05 --out " +
+                   (dir / "out").string());
+  };
+  auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir / name) << content;
+    return dir / name;
+  };
+  std::string many;
+  for (int k = 0; k <= 10000; ++k) many += "0.1 0.1\n";
+  const fs::path big = write("big.txt", "");
+  fs::resize_file(big, (4u << 20) + 1);
+  const std::vector<std::pair<fs::path, std::string>> cases{
+      {"/dev/zero", "not a regular file"},
+      {dir, "not a regular file"},
+      {dir / "missing.txt", "cannot be read"},
+      {write("letter.txt", "0.10 0.12\nO.6 0.6\n0.12 0.14\n"), "line 2"},
+      {write("three.txt", "0.10 0.12 0.3\n"), "line 1"},
+      {write("word.txt", "# rock\n0.10 0.12\nnan 0.1\n"), "line 3"},
+      {big, "bytes"},
+      {write("many.txt", many), "more than 10000 vertices"},
+  };
+  for (const auto& [polygon, named] : cases) {
+    const Result r = run_with(polygon);
+    EXPECT_EQ(r.exit_code, 2) << polygon << "\n" << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << polygon << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out")) << polygon;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, BadSetValueNamesFieldAndLeavesNoOutput) {
   const fs::path dir = fresh_dir("bad_set");
   Result r = run_cli("experiment swinging-bar --quiet --out " + dir.string() + " --set bar.point_mass=-1");
