@@ -167,6 +167,18 @@ Config Config::parse(std::string_view text, const std::string& source) {
 }
 
 Config Config::load(const std::filesystem::path& path) {
+  // A scene is a small regular file: refuse devices (/dev/zero never ends), directories and
+  // anything above kMaxSceneFileBytes before reading.
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError("cannot read scene file '" + path.string() + "': " + (ec ? ec.message() : "no such file"));
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError("scene file '" + path.string() + "' is not a regular file (a directory or a device)");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec || bytes > kMaxSceneFileBytes)
+    throw InputError("scene file '" + path.string() + "' is " + std::to_string(bytes) + " bytes; at most " +
+                     std::to_string(kMaxSceneFileBytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read scene file '" + path.string() + "'");
   std::ostringstream text;

@@ -103,6 +103,7 @@ TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
       {"--duration 1e18", "frames"},
       {"--set output.frame_interval=1e-9", "output.frame_interval"},
       {"--set output.frame_interval=1e-7 --duration 0.01", "coupling.min_dt"},
+      {"/dev/zero", "not a regular file"},  // read until memory ran out
   };
   for (const auto& [args, named] : cases) {
     const Result r = run_cli("simulate --quiet --out " + dir.string() + " " + args);  // '…' keeps the line break

@@ -45,8 +45,9 @@ class Config {
 
   /// Parses TOML text; `source` names it in error messages (a file path or "built-in scene").
   static Config parse(std::string_view text, const std::string& source);
-  /// Reads and parses a TOML file.
+  /// Reads and parses a TOML file: a regular file of at most kMaxSceneFileBytes (else InputError).
   static Config load(const std::filesystem::path& path);
+  static constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
 
   /// Overlays every field of `overlay` onto this configuration. Fields must exist here and have
   /// the same type (an integer is accepted where a float is expected).
