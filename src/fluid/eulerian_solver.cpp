@@ -22,25 +22,6 @@ inline double blended_flux(double carrier, double q_minus, double q_plus, double
   return carrier * 0.5 * (q_minus + q_plus) + gamma * std::abs(carrier) * 0.5 * (q_minus - q_plus);
 }
 
-// Reads a face field where a limited flux's stencil reaches one sample beyond the stored ghosts:
-// wraps along a periodic axis (period = cells), otherwise repeats the outermost stored sample,
-// which makes the face value first-order upwind there.
-class StencilReader {
- public:
-  StencilReader(const Field& f, const Boundaries& b)
-      : f_(f), period_x_(b.periodic_x() ? f.grid().nx : 0), period_y_(b.periodic_y() ? f.grid().ny : 0) {}
-  double operator()(int i, int j) const {
-    if (i < -1 || i > f_.count_x()) i = period_x_ ? wrap(i, period_x_) : std::clamp(i, -1, f_.count_x());
-    if (j < -1 || j > f_.count_y()) j = period_y_ ? wrap(j, period_y_) : std::clamp(j, -1, f_.count_y());
-    return f_(i, j);
-  }
-
- private:
-  static int wrap(int i, int n) { return ((i % n) + n) % n; }
-  const Field& f_;
-  int period_x_, period_y_;
-};
-
 // Limited value on the face between the upwind sample `up` and the downwind one `down`, with
 // `far` one further upwind: up + ½ψ(r)(down − up), r = (up − far)/(down − up) (Hundsdorfer &
 // Verwer 2003, §III.1). ψ = 0 where the data have an extremum (r ≤ 0): first-order upwind.

@@ -364,30 +364,21 @@ double monotone_cubic(double f0, double f1, double f2, double f3, double t) {
   return f1 + d1 * t + (3.0 * delta - 2.0 * d1 - d2) * t2 + (d1 + d2 - 2.0 * delta) * t3;
 }
 
-// A sample index beyond the stored range [−1, count]: wrapped by the period (cells) or clamped.
-int stencil_index(int i, int count, int period) {
-  if (i >= -1 && i <= count) return i;
-  return period > 0 ? ((i % period) + period) % period : std::clamp(i, -1, count);
-}
-
 }  // namespace
 
 double sample_monotone_cubic(const Field& f, const Boundaries& b, Vec2 p) {
   const MacGrid& g = f.grid();
   const Staggering s = f.staggering();
   const Vec2 c = g.grid_from_world(p);
-  const double fx = std::clamp(c.x - s.x, -1.0, static_cast<double>(f.count_x()));
-  const double fy = std::clamp(c.y - s.y, -1.0, static_cast<double>(f.count_y()));
+  const double fx = Field::clamp_index(c.x - s.x, f.count_x());
+  const double fy = Field::clamp_index(c.y - s.y, f.count_y());
   const int i0 = std::min(static_cast<int>(std::floor(fx)), f.count_x() - 1);
   const int j0 = std::min(static_cast<int>(std::floor(fy)), f.count_y() - 1);
-  const int px = b.periodic_x() ? g.nx : 0;
-  const int py = b.periodic_y() ? g.ny : 0;
+  const StencilReader q(f, b);
   double rows[4];
   for (int r = 0; r < 4; ++r) {
-    const int j = stencil_index(j0 - 1 + r, f.count_y(), py);
-    double q[4];
-    for (int k = 0; k < 4; ++k) q[k] = f(stencil_index(i0 - 1 + k, f.count_x(), px), j);
-    rows[r] = monotone_cubic(q[0], q[1], q[2], q[3], fx - i0);
+    const int j = j0 - 1 + r;
+    rows[r] = monotone_cubic(q(i0 - 1, j), q(i0, j), q(i0 + 1, j), q(i0 + 2, j), fx - i0);
   }
   return monotone_cubic(rows[0], rows[1], rows[2], rows[3], fy - j0);
 }

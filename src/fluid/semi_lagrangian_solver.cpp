@@ -81,7 +81,10 @@ StepReport SemiLagrangianSolver::second_order_step(double dt_s) {
   Velocity& vel = state_.velocity;
   apply_velocity_boundaries(vel, b);
   const bool continues = history_continues();
-  if (!continues) increment_ = Field(g, kCellCentres);
+  if (!continues) {  // the coupled jellyfish edits the flow every step: no allocation here
+    if (increment_.count_x() != g.nx) increment_ = Field(g, kCellCentres);
+    else increment_.fill(0.0);
+  }
   // Carrier u(t + ½Δt) ≈ u + (u − u_last_start)·½Δt/Δt_last.
   if (continues) {
     const double ratio = 0.5 * dt_s / last_dt_s_;

@@ -3,6 +3,7 @@
 // staggered-grid form of Griebel, Dornseifer & Neunhoeffer: the velocity component normal to a
 // side lives on the side itself and is set directly; the tangential component gets a ghost value
 // half a cell outside so that the linear interpolation onto the side gives the wanted value.
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string_view>
@@ -66,6 +67,24 @@ FaceRange interior_v_faces(const MacGrid& g, const Boundaries& b);
 /// Faces that the projection corrects: the interior ones plus the faces on outflow sides.
 FaceRange projected_u_faces(const MacGrid& g, const Boundaries& b);
 FaceRange projected_v_faces(const MacGrid& g, const Boundaries& b);
+
+/// Reads a field where a wide stencil (limited fluxes, cubic interpolation) reaches beyond the
+/// stored ghosts: wraps along a periodic axis of `b` (period = cells), otherwise repeats the
+/// outermost stored sample.
+class StencilReader {
+ public:
+  StencilReader(const Field& f, const Boundaries& b)
+      : f_(f), period_x_(b.periodic_x() ? f.grid().nx : 0), period_y_(b.periodic_y() ? f.grid().ny : 0) {}
+  double operator()(int i, int j) const { return f_(index(i, f_.count_x(), period_x_), index(j, f_.count_y(), period_y_)); }
+
+ private:
+  static int index(int i, int count, int period) {
+    if (i >= -1 && i <= count) return i;
+    return period > 0 ? ((i % period) + period) % period : std::clamp(i, -1, count);
+  }
+  const Field& f_;
+  int period_x_, period_y_;
+};
 
 /// Sets every boundary value of Figure 4.2: wall and in-flow normal velocities, outflow normal
 /// velocities copied from the first interior face, periodic copies and all ghost values.
