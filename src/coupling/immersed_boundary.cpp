@@ -181,7 +181,7 @@ void ImmersedBoundary::interpolate_at_markers(const fluid::Velocity& vel, std::v
   const auto& x = body_.points.position;
   out.resize(x.size());
   if (settings_.west_mirror) interpolate_velocities(transfer_, vel, x, out);
-  else interpolate_velocities(vel, x, settings_.kernel, out);
+  else interpolate_velocities(vel, x, settings_.kernel, out, periodicity());
 }
 
 Vec2 ImmersedBoundary::target_position(std::size_t p, double t) const {
@@ -222,6 +222,9 @@ CoupledStepReport ImmersedBoundary::step(double dt_s) {
 void ImmersedBoundary::compute_forces(std::vector<Vec2>& force) const {
   force.assign(body_.points.size(), Vec2{});
   elastic::add_spring_forces(body_, body_.points.position, force);
+  // Dashpots use the markers' velocities from the end of the last step (explicit: they are not
+  // in the stiffness K of the semi-implicit step).
+  elastic::add_dashpot_forces(body_, body_.points.position, body_.points.velocity, force);
 }
 
 void ImmersedBoundary::assemble_stiffness(Eigen::SparseMatrix<double>& k) const {
@@ -259,7 +262,8 @@ CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
   fluid::FaceAccelerations& acc = fluid_.body_acceleration();
   acc.u.fill(0.0);
   acc.v.fill(0.0);
-  spread_forces(body_.points.position, force_, settings_.kernel, fluid_.settings().density_kg_per_m3, acc);
+  spread_forces(body_.points.position, force_, settings_.kernel, fluid_.settings().density_kg_per_m3, acc,
+                periodicity());
   report.fluid = fluid_.step(dt_s);
   move_markers_with_fluid(dt_s);
   return report;
@@ -269,7 +273,8 @@ void ImmersedBoundary::spread_to_interior_faces(std::span<Vec2> forces, fluid::V
   w.u.fill(0.0);
   w.v.fill(0.0);
   mask_target_forces(forces);  // targets hold the body from outside; they push no fluid
-  spread_forces(body_.points.position, forces, settings_.kernel, fluid_.settings().density_kg_per_m3, w);
+  spread_forces(body_.points.position, forces, settings_.kernel, fluid_.settings().density_kg_per_m3, w,
+                periodicity());
   const fluid::MacGrid& g = scratch_.grid;
   keep_only(w.u, fluid::interior_u_faces(g, homogeneous_));
   keep_only(w.v, fluid::interior_v_faces(g, homogeneous_));

@@ -25,7 +25,7 @@ double kernel_weight(Kernel k, double r) {
   return 0.0;
 }
 
-Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k) {
+Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k, Periodicity periodic) {
   const fluid::MacGrid& g = field.grid();
   const fluid::Staggering st = field.staggering();
   // Continuous sample coordinates: sample (i, j) sits at grid coordinates (i + st.x, j + st.y).
@@ -36,10 +36,12 @@ Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k) {
   s.width = 2 * r;
   s.i0 = static_cast<int>(std::floor(fx)) - r + 1;
   s.j0 = static_cast<int>(std::floor(fy)) - r + 1;
+  s.period_x = periodic.x ? g.nx : 0;
+  s.period_y = periodic.y ? g.ny : 0;
   for (int a = 0; a < s.width; ++a) {
     const int i = s.i0 + a, j = s.j0 + a;
-    s.wx[a] = (i >= -1 && i <= field.count_x()) ? kernel_weight(k, fx - i) : 0.0;
-    s.wy[a] = (j >= -1 && j <= field.count_y()) ? kernel_weight(k, fy - j) : 0.0;
+    s.wx[a] = (periodic.x || (i >= -1 && i <= field.count_x())) ? kernel_weight(k, fx - i) : 0.0;
+    s.wy[a] = (periodic.y || (j >= -1 && j <= field.count_y())) ? kernel_weight(k, fy - j) : 0.0;
   }
   return s;
 }
@@ -50,7 +52,7 @@ double interpolate(const fluid::Field& field, const Stencil& s) {
     if (s.wy[b] == 0.0) continue;
     for (int a = 0; a < s.width; ++a) {
       if (s.wx[a] == 0.0) continue;
-      sum += s.wx[a] * s.wy[b] * field(s.i0 + a, s.j0 + b);
+      sum += s.wx[a] * s.wy[b] * field(s.index_x(a), s.index_y(b));
     }
   }
   return sum;
@@ -61,25 +63,26 @@ void spread(fluid::Field& field, const Stencil& s, double value) {
     if (s.wy[b] == 0.0) continue;
     for (int a = 0; a < s.width; ++a) {
       if (s.wx[a] == 0.0) continue;
-      field(s.i0 + a, s.j0 + b) += s.wx[a] * s.wy[b] * value;
+      field(s.index_x(a), s.index_y(b)) += s.wx[a] * s.wy[b] * value;
     }
   }
 }
 
-void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out) {
+void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out,
+                            Periodicity periodic) {
   for (std::size_t p = 0; p < points.size(); ++p) {
-    out[p] = {interpolate(vel.u, make_stencil(vel.u, points[p], k)),
-              interpolate(vel.v, make_stencil(vel.v, points[p], k))};
+    out[p] = {interpolate(vel.u, make_stencil(vel.u, points[p], k, periodic)),
+              interpolate(vel.v, make_stencil(vel.v, points[p], k, periodic))};
   }
 }
 
 void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
-                   fluid::FaceAccelerations& acc) {
+                   fluid::FaceAccelerations& acc, Periodicity periodic) {
   const fluid::MacGrid& g = acc.u.grid();
   const double to_acceleration = 1.0 / (density_kg_per_m3 * g.dx() * g.dy());  // eq. 4.19
   for (std::size_t p = 0; p < points.size(); ++p) {
-    spread(acc.u, make_stencil(acc.u, points[p], k), forces[p].x * to_acceleration);
-    spread(acc.v, make_stencil(acc.v, points[p], k), forces[p].y * to_acceleration);
+    spread(acc.u, make_stencil(acc.u, points[p], k, periodic), forces[p].x * to_acceleration);
+    spread(acc.v, make_stencil(acc.v, points[p], k, periodic), forces[p].y * to_acceleration);
   }
 }
 

@@ -48,11 +48,11 @@ bool real_sample(const Axis& a, bool normal, int i, int& out, double& factor) {
     i = normal ? -i : -1 - i;
     factor = normal ? -1.0 : 1.0;
   }
-  if (i < -1 || i > count) return false;
-  if (a.periodic()) {
+  if (a.periodic()) {  // any sample wraps around the seam (make_stencil with Periodicity)
     out = ((i % a.n) + a.n) % a.n;
     return true;
   }
+  if (i < -1 || i > count) return false;
   if (i >= 0 && i < count) {
     out = i;
     return true;
@@ -79,6 +79,10 @@ bool interior_sample(const Axis& a, bool normal, int i) {
   if (!normal || a.periodic()) return i >= 0 && i < a.n;
   return i >= 1 && i < a.n;
 }
+
+/// Sample i moved into [0, n) along a periodic axis (the kernel wraps around the seam); unchanged
+/// along any other.
+int wrap_periodic(const Axis& a, int i) { return a.periodic() ? ((i % a.n) + a.n) % a.n : i; }
 
 /// Kernel weights of the samples along one axis around continuous sample coordinate f.
 struct AxisWeights {
@@ -169,10 +173,10 @@ FaceTerms spreading_terms(const TransferGeometry& g, Vec2 p, int component) {
   const AxisWeights wx = axis_weights(g.kernel, f.x), wy = axis_weights(g.kernel, f.y);
   FaceTerms t;
   for (int b = 0; b < wy.width; ++b) {
-    const int j = wy.first + b;
+    const int j = wrap_periodic(ay, wy.first + b);
     if (wy.w[b] == 0.0 || !interior_sample(ay, component == 1, j)) continue;
     for (int a = 0; a < wx.width; ++a) {
-      const int i = wx.first + a;
+      const int i = wrap_periodic(ax, wx.first + a);
       if (wx.w[a] == 0.0 || !interior_sample(ax, component == 0, i)) continue;
       const double w = wx.w[a] * wy.w[b];
       t.add(i, j, w);

@@ -104,6 +104,15 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+// Markers within two cells of the seams of a periodic tank (the 4-point kernel wraps around).
+TEST(MobilityTable, EqualsTheResponseWithMarkersOnPeriodicSeams) {
+  const fluid::MacGrid grid(24, 20, 0.3, 0.2);
+  const std::vector<Vec2> p{{0.004, 0.1}, {0.296, 0.12}, {0.15, 0.003}, {0.1, 0.199}, {0.001, 0.002}};
+  const Case c{"periodic seams", BoundaryType::periodic, BoundaryType::periodic, BoundaryType::periodic,
+               BoundaryType::periodic, Kernel::peskin4};
+  EXPECT_LT(table_error(c, grid, p, false), 1e-11);
+}
+
 // The half tank: a free-slip west side that is a mirror plane, markers on both sides of it and on
 // it (a symmetric body and its west half, which only spills onto the east faces).
 TEST(MobilityTable, EqualsTheResponseOnAHalfTankWithAMirrorSide) {

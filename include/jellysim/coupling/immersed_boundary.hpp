@@ -121,6 +121,8 @@ class ImmersedBoundary {
   void project_spread_forces(std::span<Vec2> forces);
   /// w = S F / ρ on the interior faces (eq. 4.19), zero elsewhere; target points spread nothing.
   void spread_to_interior_faces(std::span<Vec2> forces, fluid::Velocity& w);
+  /// The tank's periodic axes: the kernel wraps around their seams.
+  Periodicity periodicity() const { return {homogeneous_.periodic_x(), homogeneous_.periodic_y()}; }
   /// Where target point p is at time t (pinned: where it is; prescribed: on its path).
   Vec2 target_position(std::size_t p, double t) const;
   /// Zeroes the entries of target points: they spread no force and are not moved by the fluid.

@@ -25,15 +25,29 @@ double kernel_weight(Kernel k, double r);
 /// Half-width of the kernel's support in samples (1 or 2).
 int kernel_radius(Kernel k);
 
+/// Which axes of the tank are periodic: along those the kernel wraps around the seam (a point near
+/// one side reaches the samples at the other), elsewhere it stops at the ghost layer.
+struct Periodicity {
+  bool x = false, y = false;
+};
+
 /// The samples of one staggered field that a point touches and their weights w = φ(Δi) φ(Δj).
-/// Samples outside the stored range (interior plus one ghost layer) get weight 0.
+/// Along a periodic axis sample indices wrap with the period (cells along the axis; a face on the
+/// seam is stored twice and the first copy is used); elsewhere samples outside the stored range
+/// (interior plus one ghost layer) get weight 0.
 struct Stencil {
-  int i0 = 0, j0 = 0;  ///< first sample index in x and y
+  int i0 = 0, j0 = 0;  ///< first sample index in x and y (before wrapping)
   int width = 0;       ///< 2 (bilinear) or 4 (peskin4) samples per direction
+  int period_x = 0, period_y = 0;  ///< > 0: indices wrap modulo this along the axis
   double wx[4] = {0, 0, 0, 0};
   double wy[4] = {0, 0, 0, 0};
+  int index_x(int a) const { return wrap(i0 + a, period_x); }
+  int index_y(int b) const { return wrap(j0 + b, period_y); }
+
+ private:
+  static int wrap(int i, int period) { return period > 0 ? ((i % period) + period) % period : i; }
 };
-Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k);
+Stencil make_stencil(const fluid::Field& field, Vec2 p, Kernel k, Periodicity periodic = {});
 
 /// Σ w · field over the stencil (the velocity at a point, eq. 4.20's u(x_i)); ghosts must be set.
 double interpolate(const fluid::Field& field, const Stencil& s);
@@ -41,11 +55,12 @@ double interpolate(const fluid::Field& field, const Stencil& s);
 void spread(fluid::Field& field, const Stencil& s, double value);
 
 /// Fluid velocity (m/s) at each point (needs filled ghosts).
-void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out);
+void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k, std::span<Vec2> out,
+                            Periodicity periodic = {});
 
 /// Adds the accelerations (m/s²) that point forces F_k (N per metre of depth: 2D forces) give the
 /// fluid: a(face) += Σ_k F_k w_k(face) / (ρ ΔxΔy) — the force density divided by ρ (eq. 4.19).
 void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
-                   fluid::FaceAccelerations& acc);
+                   fluid::FaceAccelerations& acc, Periodicity periodic = {});
 
 }  // namespace jellysim::coupling
