@@ -5,6 +5,8 @@
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/interrupt.hpp"
+#include "jellysim/io/ib2d_files.hpp"
+#include "jellysim/jellyfish/hoover_miller.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
@@ -137,6 +139,27 @@ int run_scene(const std::string& scene_path, const RunOptions& o, const std::str
     if (default_scene == "animation" && name == "jellyfish") name = "animation";
   }
   return run_experiment(js::experiments::find_experiment(name), scene, o);
+}
+
+/// `jellysim ib2d-jellyfish`: the Hoover–Miller bell at IB2d's resolution N as IB2d's files.
+int write_hoover_miller_files(int resolution, const std::string& stem) {
+  if (resolution % 8 != 0)
+    throw js::InputError("--resolution " + std::to_string(resolution) + " must be a multiple of 8 in [16, 4096]");
+  if (stem.empty() || stem.back() == '/')
+    throw js::InputError("--out '" + stem + "' needs a file stem after the directory, e.g. ib2d/jelly256");
+  js::jellyfish::HooverMillerSpec spec;
+  spec.resolution = resolution;
+  const js::jellyfish::HooverMillerBell bell = js::jellyfish::hoover_miller_bell(spec);
+  const std::filesystem::path path(stem);
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  js::io::write_ib2d_structure(bell.structure, path);
+  std::cout << "wrote " << stem << ".vertex (" << bell.structure.vertices.size() << " points: " << bell.bell_points
+            << " bell, " << 2 * bell.muscle_points << " muscle, " << bell.target_points << " targets), .spring ("
+            << bell.structure.springs.size() << "; muscles are rows " << bell.first_muscle_spring + 1 << "-"
+            << bell.structure.springs.size() << "), .nonInv_beam (" << bell.structure.non_invariant_beams.size()
+            << "), .target (" << bell.structure.targets.size() << ") for " << spec.cells_x() << " x "
+            << spec.cells_y() << " cells\n";
+  return 0;
 }
 
 int list_definitions(const std::string& name) {
@@ -317,6 +340,16 @@ int main(int argc, char** argv) {
   bool reference = false;
   scenes->add_flag("--reference", reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
 
+  int hm_resolution = 256;
+  std::string hm_stem;
+  auto* ib2d = app.add_subcommand(
+      "ib2d-jellyfish", "Write the Hoover-Miller jellyfish bell (IB2d's convergence example) as IB2d structure files "
+                        "STEM.vertex, .spring, .nonInv_beam, .target (docs/ib2d.md)");
+  ib2d->add_option("--resolution", hm_resolution, "IB2d's N, a multiple of 8 in [16, 4096]: 0.375 N x 1.25 N cells")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 4096));
+  ib2d->add_option("--out", hm_stem, "Path and stem of the files, e.g. scenes/hoover-miller/jelly256")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -327,6 +360,7 @@ int main(int argc, char** argv) {
     if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
     if (simulate->parsed()) return run_scene(sim_scene_path, sim_opts, "jellyfish");
     if (view->parsed()) return run_view(view_cmd);
+    if (ib2d->parsed()) return write_hoover_miller_files(hm_resolution, hm_stem);
     if (sweep->parsed()) {
       if (!sweep_frequencies.empty()) {
         std::string list;

@@ -90,6 +90,76 @@ void Body::add_angular_spring(int i, int j, int k, double stiffness, double rest
 
 namespace {
 
+void require_three_distinct_points(const Body& body, int i, int j, int k, const char* what) {
+  for (int index : {i, j, k}) require_point(body, index, what);
+  if (i == j || j == k || i == k) throw std::invalid_argument(std::string("a ") + what + " needs three distinct points");
+}
+
+void require_two_distinct_points(const Body& body, int i, int j, const char* what) {
+  require_point(body, i, what);
+  require_point(body, j, what);
+  if (i == j) {
+    throw std::invalid_argument(std::string("a ") + what + " needs two distinct points, got " + std::to_string(i) +
+                                " twice");
+  }
+}
+
+}  // namespace
+
+void Body::add_torsional_beam(int i, int j, int k, double stiffness, double curvature) {
+  require_three_distinct_points(*this, i, j, k, "torsional beam");
+  require_non_negative(stiffness, "torsional beam stiffness");
+  if (std::isnan(curvature)) curvature = beam_cross_product(points.position[i], points.position[j], points.position[k]);
+  if (!std::isfinite(curvature)) throw std::invalid_argument("torsional beam curvature must be finite");
+  torsional.i.push_back(i);
+  torsional.j.push_back(j);
+  torsional.k.push_back(k);
+  torsional.stiffness.push_back(stiffness);
+  torsional.curvature.push_back(curvature);
+}
+
+void Body::add_non_invariant_beam(int i, int j, int k, double stiffness, Vec2 curvature) {
+  require_three_distinct_points(*this, i, j, k, "non-invariant beam");
+  require_non_negative(stiffness, "non-invariant beam stiffness");
+  if (std::isnan(curvature.x) && std::isnan(curvature.y)) {
+    curvature = points.position[i] - 2.0 * points.position[j] + points.position[k];
+  }
+  if (!std::isfinite(curvature.x) || !std::isfinite(curvature.y)) {
+    throw std::invalid_argument("non-invariant beam curvature must be finite");
+  }
+  non_invariant.i.push_back(i);
+  non_invariant.j.push_back(j);
+  non_invariant.k.push_back(k);
+  non_invariant.stiffness.push_back(stiffness);
+  non_invariant.curvature.push_back(curvature);
+}
+
+void Body::add_power_spring(int i, int j, double stiffness, double rest_length, double degree) {
+  require_two_distinct_points(*this, i, j, "power spring");
+  require_non_negative(stiffness, "power spring stiffness");
+  // α < 1 has an infinite stiffness dT/dl at rest; large α overflows |e|^α for modest stretches.
+  if (!(degree >= 1.0 && degree <= 10.0)) {
+    throw std::invalid_argument("power spring degree = " + std::to_string(degree) + " must be in [1, 10]");
+  }
+  if (rest_length < 0.0) rest_length = norm(points.position[j] - points.position[i]);
+  require_non_negative(rest_length, "power spring rest length");
+  power.i.push_back(i);
+  power.j.push_back(j);
+  power.stiffness.push_back(stiffness);
+  power.rest_length.push_back(rest_length);
+  power.degree.push_back(degree);
+}
+
+void Body::add_dashpot(int i, int j, double coefficient) {
+  require_two_distinct_points(*this, i, j, "dashpot");
+  require_non_negative(coefficient, "dashpot coefficient");
+  dashpots.i.push_back(i);
+  dashpots.j.push_back(j);
+  dashpots.coefficient.push_back(coefficient);
+}
+
+namespace {
+
 double elastic_energy(const Body& body) {
   const auto& x = body.points.position;
   double e = 0.0;
@@ -100,6 +170,18 @@ double elastic_energy(const Body& body) {
   const auto& ang = body.angular;
   for (std::size_t s = 0; s < ang.size(); ++s) {
     e += angular_spring_energy(x[ang.i[s]], x[ang.j[s]], x[ang.k[s]], ang.stiffness[s], ang.rest_angle[s]);
+  }
+  const auto& tb = body.torsional;
+  for (std::size_t s = 0; s < tb.size(); ++s) {
+    e += torsional_beam_energy(x[tb.i[s]], x[tb.j[s]], x[tb.k[s]], tb.stiffness[s], tb.curvature[s]);
+  }
+  const auto& nb = body.non_invariant;
+  for (std::size_t s = 0; s < nb.size(); ++s) {
+    e += non_invariant_beam_energy(x[nb.i[s]], x[nb.j[s]], x[nb.k[s]], nb.stiffness[s], nb.curvature[s]);
+  }
+  const auto& pw = body.power;
+  for (std::size_t s = 0; s < pw.size(); ++s) {
+    e += power_spring_energy(x[pw.i[s]], x[pw.j[s]], pw.stiffness[s], pw.rest_length[s], pw.degree[s]);
   }
   return e;
 }
@@ -146,6 +228,40 @@ void add_spring_forces(const Body& body, const std::vector<Vec2>& x, std::vector
     force[ang.j[s]] += f.on_j;
     force[ang.k[s]] += f.on_k;
   }
+  // The beams' forces come with their Jacobians; only the forces are kept here.
+  const auto add_three = [&force](int i, int j, int k, const ThreePointForce& f) {
+    force[i] += f.on[0];
+    force[j] += f.on[1];
+    force[k] += f.on[2];
+  };
+  const auto& tb = body.torsional;
+  for (std::size_t s = 0; s < tb.size(); ++s) {
+    add_three(tb.i[s], tb.j[s], tb.k[s],
+              torsional_beam_force_and_jacobian(x[tb.i[s]], x[tb.j[s]], x[tb.k[s]], tb.stiffness[s], tb.curvature[s]));
+  }
+  const auto& nb = body.non_invariant;
+  for (std::size_t s = 0; s < nb.size(); ++s) {
+    add_three(nb.i[s], nb.j[s], nb.k[s],
+              non_invariant_beam_force_and_jacobian(x[nb.i[s]], x[nb.j[s]], x[nb.k[s]], nb.stiffness[s],
+                                                    nb.curvature[s]));
+  }
+  const auto& pw = body.power;
+  for (std::size_t s = 0; s < pw.size(); ++s) {
+    const Vec2 f = power_spring_force(x[pw.i[s]], x[pw.j[s]], pw.stiffness[s], pw.rest_length[s], pw.degree[s]);
+    force[pw.i[s]] += f;
+    force[pw.j[s]] -= f;
+  }
+}
+
+void add_dashpot_forces(const Body& body, const std::vector<Vec2>& x, const std::vector<Vec2>& v,
+                        std::vector<Vec2>& force) {
+  const auto& dp = body.dashpots;
+  for (std::size_t s = 0; s < dp.size(); ++s) {
+    const int i = dp.i[s], j = dp.j[s];
+    const Vec2 f = dashpot_force(x[i], x[j], v[i], v[j], dp.coefficient[s]);
+    force[i] += f;
+    force[j] -= f;
+  }
 }
 
 void accumulate_forces(const Body& body, const std::vector<Vec2>& position, const std::vector<Vec2>& velocity,
@@ -157,6 +273,7 @@ void accumulate_forces(const Body& body, const std::vector<Vec2>& position, cons
   }
   force.assign(n, Vec2{});
   add_spring_forces(body, position, force);
+  add_dashpot_forces(body, position, velocity, force);
   add_drag_and_gravity(body, position, velocity, t, force);
 }
 

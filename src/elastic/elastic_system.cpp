@@ -72,7 +72,9 @@ class JacobianAssembler {
     if (points_.kind[b] != PointKind::Prescribed) add_block(a, b, d);
   }
   /// M⁻¹ ∂F_a/∂v_b.
-  void add_velocity_block(int a, int b, const Mat2& d) { add_block(a, static_cast<int>(n_) + b, d); }
+  void add_velocity_block(int a, int b, const Mat2& d) {
+    if (points_.kind[b] != PointKind::Prescribed) add_block(a, static_cast<int>(n_) + b, d);
+  }
 
  private:
   bool free(Eigen::Index p) const { return points_.kind[p] == PointKind::Free; }
@@ -100,6 +102,25 @@ void add_drag(const Body& body, JacobianAssembler& jac) {
   const Mat2 d = -body.drag_coefficient * Mat2::identity();
   const auto n = static_cast<int>(body.points.size());
   for (int p = 0; p < n; ++p) jac.add_velocity_block(p, p, d);
+}
+
+// Dashpots: F_i = b ((v_j − v_i)·d̂) d̂ = −F_j. Both their velocity blocks (±b d̂d̂ᵀ) and their
+// position blocks go in, in the same four-block pattern as a linear spring's.
+void add_dashpots(const Body& body, const std::vector<Vec2>& x, const std::vector<Vec2>& v,
+                  JacobianAssembler& jac) {
+  const auto& dp = body.dashpots;
+  for (std::size_t s = 0; s < dp.size(); ++s) {
+    const int i = dp.i[s], j = dp.j[s];
+    const DashpotForce f = dashpot_force_and_jacobian(x[i], x[j], v[i], v[j], dp.coefficient[s]);
+    jac.add_velocity_block(i, i, f.d_on_i_d_vi);
+    jac.add_velocity_block(i, j, -f.d_on_i_d_vi);
+    jac.add_velocity_block(j, i, -f.d_on_i_d_vi);
+    jac.add_velocity_block(j, j, f.d_on_i_d_vi);
+    jac.add_position_block(i, i, f.d_on_i_d_xi);
+    jac.add_position_block(i, j, -f.d_on_i_d_xi);
+    jac.add_position_block(j, i, -f.d_on_i_d_xi);
+    jac.add_position_block(j, j, f.d_on_i_d_xi);
+  }
 }
 
 /// Adds the triplets into jac's existing sparsity pattern without allocating; false (jac left
@@ -180,6 +201,7 @@ void ElasticSystem::compute_jacobian(double t, const ode::Vector& y, ode::Sparse
   assembler.add_kinematics();
   for_each_spring_jacobian_block(body_, x_, [&](int a, int b, const Mat2& d) { assembler.add_position_block(a, b, d); });
   add_drag(body_, assembler);
+  add_dashpots(body_, x_, v_, assembler);
   store(triplets_, dimension(), jac);
 }
 

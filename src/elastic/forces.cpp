@@ -120,6 +120,151 @@ double angular_spring_energy(Vec2 xi, Vec2 xj, Vec2 xk, double stiffness, double
   return 0.5 * stiffness * deviation * deviation;
 }
 
+// ---- IB2d's torsional beam: E = ½ k (c − C)², c = (x_r − x_m) × (x_m − x_l) ----
+
+double beam_cross_product(Vec2 xl, Vec2 xm, Vec2 xr) { return cross(xr - xm, xm - xl); }
+
+namespace {
+
+/// ∇c for c = (x_r − x_m) × (x_m − x_l): ∇_l c = −perp(x_r − x_m), ∇_r c = −perp(x_m − x_l),
+/// ∇_m c = perp(x_r − x_l) (they sum to zero).
+struct CrossGradient {
+  Vec2 g[3];
+};
+
+CrossGradient cross_product_gradient(Vec2 xl, Vec2 xm, Vec2 xr) {
+  return {{-perp(xr - xm), perp(xr - xl), -perp(xm - xl)}};
+}
+
+/// ∂²c/∂x_a∂x_b: c = x_l × x_r + x_r × x_m + x_m × x_l is bilinear, and ∂²(u × w)/∂u∂w = −R with
+/// R the rotation by +90°, so the diagonal blocks vanish and the others are ±R.
+Mat2 cross_product_hessian(int a, int b) {
+  constexpr Mat2 rotation{0.0, -1.0, 1.0, 0.0};
+  constexpr double sign[3][3] = {{0.0, 1.0, -1.0}, {-1.0, 0.0, 1.0}, {1.0, -1.0, 0.0}};
+  return sign[a][b] * rotation;
+}
+
+}  // namespace
+
+// F_a = −k (c − C) ∇_a c;  ∂F_a/∂x_b = −k (∇_a c ∇_b cᵀ + (c − C) ∂²c/∂x_a∂x_b).
+ThreePointForce torsional_beam_force_and_jacobian(Vec2 xl, Vec2 xm, Vec2 xr, double stiffness, double curvature) {
+  const CrossGradient grad = cross_product_gradient(xl, xm, xr);
+  const double deviation = beam_cross_product(xl, xm, xr) - curvature;
+  ThreePointForce f;
+  for (int a = 0; a < 3; ++a) {
+    f.on[a] = -stiffness * deviation * grad.g[a];
+    for (int b = 0; b < 3; ++b) {
+      f.jacobian[a][b] =
+          -stiffness * (Mat2::outer(grad.g[a], grad.g[b]) + deviation * cross_product_hessian(a, b));
+    }
+  }
+  return f;
+}
+
+double torsional_beam_energy(Vec2 xl, Vec2 xm, Vec2 xr, double stiffness, double curvature) {
+  const double deviation = beam_cross_product(xl, xm, xr) - curvature;
+  return 0.5 * stiffness * deviation * deviation;
+}
+
+// ---- IB2d's non-invariant beam: E = ½ k |x_l − 2 x_m + x_r − C|² ----
+
+namespace {
+
+constexpr double second_difference_weight[3] = {1.0, -2.0, 1.0};
+
+/// D = x_l − 2 x_m + x_r − C, m.
+Vec2 second_difference_deviation(Vec2 xl, Vec2 xm, Vec2 xr, Vec2 curvature) {
+  return xl - 2.0 * xm + xr - curvature;
+}
+
+}  // namespace
+
+// F_a = −k w_a D;  ∂F_a/∂x_b = −k w_a w_b I.
+ThreePointForce non_invariant_beam_force_and_jacobian(Vec2 xl, Vec2 xm, Vec2 xr, double stiffness, Vec2 curvature) {
+  const Vec2 deviation = second_difference_deviation(xl, xm, xr, curvature);
+  const double* w = second_difference_weight;
+  ThreePointForce f;
+  for (int a = 0; a < 3; ++a) {
+    f.on[a] = -stiffness * w[a] * deviation;
+    for (int b = 0; b < 3; ++b) f.jacobian[a][b] = -stiffness * w[a] * w[b] * Mat2::identity();
+  }
+  return f;
+}
+
+double non_invariant_beam_energy(Vec2 xl, Vec2 xm, Vec2 xr, double stiffness, Vec2 curvature) {
+  return 0.5 * stiffness * norm_squared(second_difference_deviation(xl, xm, xr, curvature));
+}
+
+// ---- IB2d's power-law spring: E = ½ k |l − l_r|^(α+1) ----
+
+double power_spring_tension(double stretch, double stiffness, double degree) {
+  const double magnitude = 0.5 * (degree + 1.0) * stiffness * std::pow(std::abs(stretch), degree);
+  return stretch < 0.0 ? -magnitude : magnitude;
+}
+
+namespace {
+
+/// T' = dT/dl = ½ (α+1) α k |e|^(α−1), N/m (k at α = 1, also at e = 0).
+double power_spring_tension_slope(double stretch, double stiffness, double degree) {
+  return 0.5 * (degree + 1.0) * degree * stiffness * std::pow(std::abs(stretch), degree - 1.0);
+}
+
+}  // namespace
+
+Vec2 power_spring_force(Vec2 xi, Vec2 xj, double stiffness, double rest_length, double degree) {
+  const Vec2 d = xj - xi;
+  const double l = norm(d);
+  if (l == 0.0) return {};
+  return power_spring_tension(l - rest_length, stiffness, degree) / l * d;
+}
+
+// F_i = T(l) d̂ with d = x_j − x_i: ∂F_i/∂d = T' d̂d̂ᵀ + (T/l)(I − d̂d̂ᵀ), ∂F_i/∂x_i = −∂F_i/∂d.
+LinearSpringForce power_spring_force_and_jacobian(Vec2 xi, Vec2 xj, double stiffness, double rest_length,
+                                                  double degree) {
+  const Vec2 d = xj - xi;
+  const double l = norm(d);
+  const double stretch = l - rest_length;
+  const double slope = power_spring_tension_slope(stretch, stiffness, degree);
+  if (l == 0.0) return {{}, -slope * Mat2::identity()};
+  const double tension = power_spring_tension(stretch, stiffness, degree);
+  const Vec2 dir = d / l;
+  const Mat2 along = Mat2::outer(dir, dir);
+  const Mat2 across = Mat2::identity() - along;
+  return {tension * dir, -(slope * along + (tension / l) * across)};
+}
+
+double power_spring_energy(Vec2 xi, Vec2 xj, double stiffness, double rest_length, double degree) {
+  const double stretch = std::abs(norm(xj - xi) - rest_length);
+  return 0.5 * stiffness * std::pow(stretch, degree + 1.0);
+}
+
+// ---- Dashpot along a spring: F_i = b ((v_j − v_i)·d̂) d̂ ----
+
+Vec2 dashpot_force(Vec2 xi, Vec2 xj, Vec2 vi, Vec2 vj, double coefficient) {
+  const Vec2 d = xj - xi;
+  const double l2 = norm_squared(d);
+  if (l2 == 0.0) return {};
+  return coefficient * dot(vj - vi, d) / l2 * d;
+}
+
+// With w = v_j − v_i, P = I − d̂d̂ᵀ: ∂F_i/∂v_i = −b d̂d̂ᵀ and
+// ∂[(d̂·w) d̂]/∂d = [(d̂·w) P + d̂ (P w)ᵀ] / l, so ∂F_i/∂x_i = −(b/l) [(d̂·w) P + d̂ (P w)ᵀ].
+DashpotForce dashpot_force_and_jacobian(Vec2 xi, Vec2 xj, Vec2 vi, Vec2 vj, double coefficient) {
+  const Vec2 d = xj - xi;
+  const double l = norm(d);
+  if (l == 0.0) return {};
+  const Vec2 dir = d / l;
+  const Vec2 w = vj - vi;
+  const double closing = dot(dir, w);
+  const Mat2 along = Mat2::outer(dir, dir);
+  const Mat2 across = Mat2::identity() - along;
+  DashpotForce f;
+  f.on_i = coefficient * closing * dir;
+  f.d_on_i_d_vi = -coefficient * along;
+  f.d_on_i_d_xi = -(coefficient / l) * (closing * across + Mat2::outer(dir, across * w));
+  return f;
+}
+
 // ---- Material (eq. 7.1, corrected to Hooke's law for a bar: κ_l = λ A / l_r) ----
 
 double linear_stiffness_from_modulus(double modulus_pa, double cross_section_area, double rest_length) {

@@ -37,6 +37,7 @@ Experiment integrator_cost_experiment();
 Experiment stages_experiment();
 Experiment steering_experiment();
 Experiment obstacle_flow_experiment();
+Experiment hoover_miller_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
@@ -47,7 +48,8 @@ const std::vector<Experiment>& all_experiments() {
                                                fluidless_experiment(), coupling_stability_experiment(), bar_hits_wall_experiment(),
                                                bar_hits_particle_experiment(), sph_stream_experiment(),
                                                mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
-                                               steering_experiment(), obstacle_flow_experiment()};
+                                               steering_experiment(), obstacle_flow_experiment(),
+                                               hoover_miller_experiment()};
   return list;
 }
 

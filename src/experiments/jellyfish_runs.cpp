@@ -129,6 +129,22 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
     const std::vector<Vec2> outline = sim.obstacle_outline(o);
     for (std::size_t k = 0; k < outline.size(); ++k) p.segments_m.push_back({outline[k], outline[(k + 1) % outline.size()]});
   }
+  // IB2d structures: their springs (scheduled ones, the muscles, thin); targets' tethers not drawn.
+  for (std::size_t k = 0; k < sim.structure_count(); ++k) {
+    const jellyfish::Ib2dParts& parts = sim.structure(k);
+    const jellyfish::Ib2dObjectSpec& spec = sim.settings().structures[k];
+    const elastic::Body& b = sim.body();
+    for (std::size_t r = 0; r < parts.spring.size(); ++r) {
+      if (parts.spring[r] < 0) continue;
+      const std::size_t s = static_cast<std::size_t>(parts.spring[r]);
+      const std::array<Vec2, 2> seg{b.points.position[static_cast<std::size_t>(b.linear.i[s])],
+                                    b.points.position[static_cast<std::size_t>(b.linear.j[s])]};
+      const bool scheduled = std::any_of(spec.schedules.begin(), spec.schedules.end(), [&](const auto& sc) {
+        return static_cast<int>(r) >= sc.first && static_cast<int>(r) <= sc.last;
+      });
+      (scheduled ? p.thin_segments_m : p.segments_m).push_back(seg);
+    }
+  }
   char caption[64];
   std::snprintf(caption, sizeof caption, "t = %.2f s", sim.time_s());
   p.caption = caption;

@@ -96,6 +96,7 @@ std::string mirror_symmetry_problem(const SwimSettings& settings) {
     Jellyfish(spec).move_into(body);
   }
   for (const ObstacleSpec& o : settings.obstacles) add_obstacle(o, coupling::peskin_spacing(settings.tank), body);
+  for (const Ib2dObjectSpec& st : settings.structures) add_ib2d_object(st, coupling::peskin_spacing(settings.tank), body);
   std::vector<int> partners, jellyfish_partners;
   return mirror_body_problem(settings, body, first_point, partners, jellyfish_partners);
 }
@@ -123,10 +124,16 @@ void validate_layout(const SwimSettings& settings) {
     std::vector<Vec2> outline = obstacle_outline(o);
     shapes.push_back({o.name, outline, outline});
   }
+  for (const Ib2dObjectSpec& st : settings.structures) {
+    std::vector<Vec2> points;
+    for (Vec2 v : st.structure.vertices) points.push_back(v + st.offset_m);
+    shapes.push_back({st.name, {}, points});  // no outline: IB2d structures are not checked for overlap
+  }
   const double margin = 0.5 * std::min(t.width_m / t.cells_x, t.height_m / t.cells_y);
   for (const Shape& s : shapes)
     for (Vec2 p : s.points)
-      if (!(p.x >= margin && p.x <= t.width_m - margin && p.y >= margin && p.y <= t.height_m - margin))
+      if (!((t.boundaries.periodic_x() || (p.x >= margin && p.x <= t.width_m - margin)) &&
+            (t.boundaries.periodic_y() || (p.y >= margin && p.y <= t.height_m - margin))))
         throw std::invalid_argument(s.name + " reaches outside the tank: point (" + std::to_string(p.x) + ", " +
                                     std::to_string(p.y) + ") m is not inside [" + std::to_string(margin) + ", " +
                                     std::to_string(t.width_m - margin) + "] x [" + std::to_string(margin) + ", " +
@@ -154,7 +161,20 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
     validate(o);
     obstacles_.push_back(add_obstacle(o, spacing, *body));
   }
+  // IB2d structures get the marker spacing IB2d's driver uses: half the smaller cell size.
+  for (const Ib2dObjectSpec& st : settings_.structures) {
+    validate(st);
+    structures_.push_back(add_ib2d_object(st, spacing, *body));
+  }
   strain_reference_.resize(body->linear.size(), 0.0);  // tethers have zero rest length: no strain
+  for (std::size_t k = 0; k < structures_.size(); ++k) {
+    const Ib2dParts& parts = structures_[k];
+    for (std::size_t r = 0; r < parts.spring.size(); ++r)
+      if (parts.spring[r] >= 0)
+        strain_reference_[static_cast<std::size_t>(parts.spring[r])] = body->linear.rest_length[static_cast<std::size_t>(parts.spring[r])];
+    set_strain_references(settings_.structures[k], parts, strain_reference_);
+    for (int tether : parts.tethers) strain_reference_[static_cast<std::size_t>(tether)] = 0.0;
+  }
 
   std::vector<int> mirror_partners;
   if (settings_.tank.symmetry != coupling::MirrorSymmetry::none) {
@@ -167,8 +187,9 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
     }
   }
   // Each jellyfish sets its muscles (and steering joints) in the world's body.
-  auto actuate = [this](double t, elastic::Body&) {
+  auto actuate = [this](double t, elastic::Body& body) {
     for (const std::unique_ptr<Jellyfish>& j : school_) j->actuate(t);
+    for (std::size_t k = 0; k < structures_.size(); ++k) actuate_schedules(settings_.structures[k], structures_[k], t, body);
   };
   world_ = std::make_unique<coupling::World>(settings_.tank, std::move(body), settings_.coupling, actuate,
                                              std::move(mirror_partners));

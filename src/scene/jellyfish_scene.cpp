@@ -1,6 +1,7 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -13,7 +14,10 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
+#include "jellysim/io/ib2d_files.hpp"
 #include "jellysim/io/output.hpp"
+#include "jellysim/jellyfish/hoover_miller.hpp"
+#include "jellysim/jellyfish/ib2d_object.hpp"
 
 namespace jellysim::scene {
 
@@ -334,6 +338,77 @@ jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& ty
   return spec;
 }
 
+/// One [[objects.schedules]] table of an IB2d object: a column of a run of its springs as a law of t.
+/// `muscles`: the rows of a generated model's muscle springs (empty when the object has none).
+jellyfish::SpringSchedule read_schedule(const io::Config& o, const std::string& where,
+                                        std::optional<std::array<int, 2>> muscles) {
+  require_known_fields(o, {"springs", "column", "law", "frequency", "amplitude", "mean", "gamma"}, where);
+  if (!o.has("springs")) throw InputError(where + ": missing field 'springs' = [first, last] (rows of the .spring file, from 1)");
+  jellyfish::SpringSchedule s;
+  if (muscles && o.literal("springs") == "\"muscles\"") {
+    s.first = (*muscles)[0];
+    s.last = (*muscles)[1];
+  } else {
+    const std::vector<std::int64_t> rows = o.integers("springs", 1, 100'000'000);
+    if (rows.size() != 2 || rows[1] < rows[0])
+      throw InputError(where + ": field 'springs' must be [first, last] with first <= last (rows of the .spring file, "
+                               "from 1)" + (muscles ? std::string(", or \"muscles\"") : std::string()));
+    s.first = static_cast<int>(rows[0] - 1);
+    s.last = static_cast<int>(rows[1] - 1);
+  }
+  if (o.has("column")) s.stiffness = o.choice("column", {"rest_length", "stiffness"}) == "stiffness";
+  if (o.has("law")) s.law = *jellyfish::schedule_law_from_string(o.choice("law", {"constant", "abs-cos", "sine", "stroke"}));
+  if (o.has("frequency")) s.frequency_hz = o.number("frequency", Range::closed(0.0, 1000.0));
+  if (o.has("amplitude")) s.amplitude = o.number("amplitude", Range::closed(-1e12, 1e12));
+  if (o.has("mean")) s.mean = o.number("mean", Range::closed(0.0, 1e12));
+  if (o.has("gamma")) s.gamma = o.number("gamma", Range{0.0, 1.0, true, false});
+  return s;
+}
+
+/// An IB2d structure: `files` = "path/stem" (IB2d's .vertex, .spring, .d_spring, .beam,
+/// .nonInv_beam, .target; relative to the working directory) or `model` = "hoover-miller" generated
+/// at `resolution` (IB2d's N); moved by `offset`; its springs scheduled by [[objects.schedules]].
+jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::string& where,
+                                           const coupling::TankSpec& tank) {
+  require_known_fields(o, {"type", "files", "model", "resolution", "offset", "schedules"}, where);
+  jellyfish::Ib2dObjectSpec spec;
+  spec.name = where;
+  std::optional<std::array<int, 2>> muscles;  ///< a generated model's muscle springs
+  if (o.has("files") == o.has("model"))
+    throw InputError(where + ": an ib2d object needs exactly one of 'files' = \"path/stem\" (IB2d's files) or "
+                             "'model' = \"hoover-miller\"");
+  if (o.has("files")) {
+    if (o.has("resolution")) throw InputError(where + ": 'resolution' goes with 'model', not with 'files'");
+    const std::string stem = o.string("files");
+    if (stem.empty()) throw InputError(where + ": field 'files' is empty; give the path and stem, e.g. \"ib2d/jelly256\"");
+    spec.structure = io::read_ib2d_structure(stem);
+  } else {
+    o.choice("model", {"hoover-miller"});
+    jellyfish::HooverMillerSpec hm;
+    // By default IB2d's N of the tank's grid: mesh width 8/N m.
+    hm.resolution = static_cast<int>(std::lround(8.0 * tank.cells_y / tank.height_m));
+    if (o.has("resolution")) hm.resolution = static_cast<int>(o.integer("resolution", 16, 4096));
+    if (hm.resolution < 16 || hm.resolution > 4096)
+      throw InputError(where + ": the tank's mesh width " + io::format_number(tank.height_m / tank.cells_y) +
+                       " m gives IB2d's N = " + std::to_string(hm.resolution) + ", outside [16, 4096]; set 'resolution'");
+    if (hm.resolution % 8 != 0)
+      throw InputError(where + ": field 'resolution' = " + std::to_string(hm.resolution) + " must be a multiple of 8");
+    const jellyfish::HooverMillerBell bell = jellyfish::hoover_miller_bell(hm);
+    spec.structure = bell.structure;
+    muscles = std::array<int, 2>{bell.first_muscle_spring, static_cast<int>(bell.structure.springs.size()) - 1};
+  }
+  if (o.has("offset")) spec.offset_m = o.vec2("offset");
+  for (std::size_t k = 0; k < o.array_size("schedules"); ++k)
+    spec.schedules.push_back(
+        read_schedule(o.element("schedules", k), where + ": schedules[" + std::to_string(k) + "]", muscles));
+  try {
+    jellyfish::validate(spec);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  return spec;
+}
+
 /// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template) and
 /// rigid obstacles (circle, box, polygon), each with an optional prescribed path.
 void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
@@ -341,10 +416,10 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
   for (std::size_t k = 0; k < count; ++k) {
     io::Config o = c.element("objects", k);
     const std::string where = "objects[" + std::to_string(k) + "]";
-    if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box or polygon)");
+    if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box, polygon or ib2d)");
     std::string type;
     try {
-      type = o.choice("type", {"jellyfish", "circle", "box", "polygon"});
+      type = o.choice("type", {"jellyfish", "circle", "box", "polygon", "ib2d"});
     } catch (const InputError& e) {
       throw InputError(where + ": unknown object " + e.what());
     }
@@ -355,6 +430,8 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
         io::Config jc = c;
         jc.merge(o.nested_under("jellyfish"));
         s.school.push_back(read_jellyfish(jc, s.tank));
+      } else if (type == "ib2d") {
+        s.structures.push_back(read_ib2d_object(o, name, s.tank));
       } else {
         s.obstacles.push_back(read_obstacle(o, type, name));
       }

@@ -52,6 +52,63 @@ TEST(Mirror, RejectsBodiesThatAreNotMirrorImages) {
   EXPECT_FALSE(springs_mirror_symmetric(bent, mirror_partners(bent, 1.0, 1e-12)));
 }
 
+// The "V" with IB2d's laws in mirror-image pairs: torsional beams stored in the same order on both
+// sides (image curvature −C) and in reversed order (image C), non-invariant beams with curvature
+// (−C_x, C_y), power springs and dashpots.
+Body v_shape_with_ib2d_laws() {
+  Body b = v_shape();
+  b.add_torsional_beam(0, 1, 2, 2.0, 0.2);
+  b.add_torsional_beam(4, 3, 2, 2.0, -0.2);     // the same order on the right: −C
+  b.add_torsional_beam(0, 1, 3, 1.0, 0.3);
+  b.add_torsional_beam(1, 3, 4, 1.0, 0.3);      // the image (4, 3, 1; −0.3) walked from the other end
+  b.add_torsional_beam(1, 2, 3, 4.0, NAN);      // its own image
+  b.add_non_invariant_beam(0, 1, 2, 3.0, {0.1, 0.2});
+  b.add_non_invariant_beam(2, 3, 4, 3.0, {-0.1, 0.2});  // the image with the ends swapped
+  b.add_non_invariant_beam(1, 2, 3, 1.0, {NAN, NAN});   // C = (0, 1): its own image
+  b.add_power_spring(0, 1, 5.0, 0.6, 2.5);
+  b.add_power_spring(3, 4, 5.0, 0.6, 2.5);
+  b.add_dashpot(1, 2, 0.5);
+  b.add_dashpot(3, 2, 0.5);
+  b.add_dashpot(4, 0, 0.2);
+  return b;
+}
+
+TEST(Mirror, ChecksIb2dLawsForMirrorImages) {
+  const Body b = v_shape_with_ib2d_laws();
+  const std::vector<int> p = mirror_partners(b, 1.0, 1e-12);
+  ASSERT_EQ(p, (std::vector<int>{4, 3, 2, 1, 0}));
+  EXPECT_TRUE(springs_mirror_symmetric(b, p));
+
+  Body torsion = v_shape_with_ib2d_laws();
+  torsion.torsional.curvature[1] *= -1.0;  // the same C on both sides, same order: not an image
+  EXPECT_FALSE(springs_mirror_symmetric(torsion, p));
+  // A beam centred on the axis is its own image walked the other way round, whatever its C.
+  Body middle = v_shape_with_ib2d_laws();
+  middle.torsional.curvature[4] += 0.1;
+  EXPECT_TRUE(springs_mirror_symmetric(middle, p));
+  Body unpaired = v_shape_with_ib2d_laws();
+  unpaired.torsional.curvature[3] += 0.1;  // (1, 3, 4) no longer the image of (0, 1, 3)
+  EXPECT_FALSE(springs_mirror_symmetric(unpaired, p));
+
+  Body lopsided = v_shape_with_ib2d_laws();
+  lopsided.non_invariant.curvature[1].x *= -1.0;  // C_x not negated
+  EXPECT_FALSE(springs_mirror_symmetric(lopsided, p));
+  Body tilted = v_shape_with_ib2d_laws();
+  tilted.non_invariant.curvature[2].x = 0.05;  // a centred beam needs C_x = 0
+  EXPECT_FALSE(springs_mirror_symmetric(tilted, p));
+
+  Body degree = v_shape_with_ib2d_laws();
+  degree.power.degree[0] = 3.0;
+  EXPECT_FALSE(springs_mirror_symmetric(degree, p));
+
+  Body damped = v_shape_with_ib2d_laws();
+  damped.dashpots.coefficient[1] = 0.6;
+  EXPECT_FALSE(springs_mirror_symmetric(damped, p));
+  Body extra = v_shape_with_ib2d_laws();
+  extra.add_dashpot(0, 1, 0.1);  // no image on 4-3
+  EXPECT_FALSE(springs_mirror_symmetric(extra, p));
+}
+
 TEST(Mirror, KeepsTheSymmetricPartOfPositionsAndVelocities) {
   Body b = v_shape();
   const std::vector<int> p = mirror_partners(b, 1.0, 1e-12);

@@ -10,8 +10,11 @@ namespace jellysim::elastic {
 /// of the same kind and mass (itself for points on the line); empty if some point has no partner.
 std::vector<int> mirror_partners(const Body& body, double axis_x_m, double tolerance_m);
 
-/// True when every linear and angular spring has a mirror-image spring (partners' points) with the
-/// same stiffness and rest length, and the same stiffness and opposite rest angle.
+/// True when every spring, beam and dashpot has a mirror image (on the partners' points) in the body:
+/// linear and power springs and dashpots with the same parameters; angular springs with the same
+/// stiffness and opposite rest angle (or the same one, walked the other way round); torsional beams
+/// with curvature −C (or C with the ends swapped); non-invariant beams with curvature (−C_x, C_y)
+/// (either end order).
 bool springs_mirror_symmetric(const Body& body, const std::vector<int>& partners);
 
 /// Replaces the free points' positions and velocities by the mirror-symmetric part: each pair

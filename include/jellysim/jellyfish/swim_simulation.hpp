@@ -14,6 +14,7 @@
 #include <string>
 
 #include "jellysim/coupling/world.hpp"
+#include "jellysim/jellyfish/ib2d_object.hpp"
 #include "jellysim/jellyfish/jellyfish.hpp"
 #include "jellysim/jellyfish/obstacle.hpp"
 #include "jellysim/sim/time_stepping.hpp"
@@ -24,6 +25,7 @@ struct SwimSettings {
   coupling::TankSpec tank;
   std::vector<JellyfishSpec> school;     ///< every jellyfish in the tank (may be empty)
   std::vector<ObstacleSpec> obstacles;   ///< rigid obstacles
+  std::vector<Ib2dObjectSpec> structures;  ///< IB2d structures (scene objects of type "ib2d")
   double obstacle_max_displacement_m = 0.0;  ///< tether stretch that stops the run; 0: one cell
   coupling::CouplingSettings coupling;
   coupling::StabilityLimits limits;
@@ -82,7 +84,10 @@ class SwimSimulation {
   /// Volume of fluid crossing the obstacle's outline per second and metre of depth (m²/s),
   /// relative to the outline's own motion: ½∮|(u − u_outline)·n| ds. Zero for a perfect wall.
   double obstacle_leakage(std::size_t i) const;
-  /// Every marker of every body in one spring body (jellyfish first, then obstacles).
+  std::size_t structure_count() const { return structures_.size(); }
+  /// Where IB2d structure i's markers, springs and targets are in body().
+  const Ib2dParts& structure(std::size_t i) const { return structures_.at(i); }
+  /// Every marker of every body in one spring body (jellyfish, then obstacles, then IB2d structures).
   const elastic::Body& body() const { return world_->body(); }
   /// The flow in the whole tank (unfolded from the east half when solving the half tank).
   const fluid::FlowState& flow() const { return world_->flow(); }
@@ -128,6 +133,7 @@ class SwimSimulation {
   SwimSettings settings_;
   std::vector<std::unique_ptr<Jellyfish>> school_;  ///< their markers live in world_->body()
   std::vector<ObstacleParts> obstacles_;
+  std::vector<Ib2dParts> structures_;
   std::unique_ptr<coupling::World> world_;
   std::vector<double> strain_reference_;  ///< rest lengths at build time (muscles uncontracted)
   std::string mirror_note_;

@@ -1,0 +1,178 @@
+// The Hoover–Miller jellyfish bell as IB2d ships it (docs/ib2d.md): IB2d's convergence example
+// (Battista & Mizuhara 2019) at a Reynolds number and resolution, run with our semi-implicit
+// coupling. Writes the bell's trajectory, its displacement per cycle and the cost per simulated
+// second, and the vorticity around the bell at the end of each contraction.
+#include <cmath>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/jellyfish/hoover_miller.hpp"
+#include "jellysim/render/field_picture.hpp"
+#include "jellysim/render/plot.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+using io::write_via_temporary;
+
+/// The experiment's scene: the definition's tank, coupling and schedule with the cells, viscosity
+/// and duration set from `re`, `grid` and `cycles` (the bell is generated at the tank's resolution).
+struct HooverMillerRun {
+  jellyfish::SwimSettings settings;
+  jellyfish::HooverMillerBell bell;
+  double re = 150.0;
+  int grid = 256;
+  int cycles = 3;
+};
+
+HooverMillerRun read_hoover_miller(io::Config c) {
+  HooverMillerRun run;
+  run.re = c.number("re", io::Range{0.0, 1e5, true, false});
+  run.grid = static_cast<int>(c.integer("grid", 32, 1024));
+  if (run.grid % 8 != 0)
+    throw InputError("field 'grid' = " + std::to_string(run.grid) + " must be a multiple of 8 in [32, 1024]");
+  run.cycles = static_cast<int>(c.integer("cycles", 1, 100));
+  jellyfish::HooverMillerSpec spec;
+  spec.resolution = run.grid;
+  run.bell = jellyfish::hoover_miller_bell(spec);
+  c.set("duration=" + std::to_string(run.cycles));
+  c.set("tank.cells=[" + std::to_string(spec.cells_x()) + ", " + std::to_string(spec.cells_y()) + "]");
+  c.set("tank.viscosity=" + io::format_number(1.0 / run.re));  // μ = 1000/Re Pa·s, ρ = 1000 kg/m³
+  run.settings = scene::read_swim_settings(c);
+  if (run.settings.structures.size() != 1 || !run.settings.school.empty() || !run.settings.obstacles.empty())
+    throw InputError("experiment hoover-miller needs exactly one object, of type \"ib2d\" (the bell), and no jellyfish");
+  return run;
+}
+
+/// Centroid of the structure's points that are not targets (the bell and its muscle markers).
+Vec2 bell_centroid(const elastic::Body& body, const jellyfish::Ib2dParts& parts, int non_target_points) {
+  Vec2 sum{};
+  for (int v = 0; v < non_target_points; ++v) sum += body.points.position[static_cast<std::size_t>(parts.first_point + v)];
+  return sum / static_cast<double>(non_target_points);
+}
+
+/// The picture of the bell (its springs; muscles thin) and the vorticity around it.
+render::FieldPicture bell_picture(const jellyfish::SwimSimulation& sim, const HooverMillerRun& run, Vec2 centre) {
+  render::FieldPicture p = swim_picture(sim, 0.0);
+  p.view_m = std::array<Vec2, 2>{Vec2{0.0, centre.y - 1.5}, Vec2{run.settings.tank.width_m, centre.y + 2.5}};
+  return p;
+}
+
+std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context& ctx) {
+  const HooverMillerRun run = read_hoover_miller(ctx.config);
+  return [run, ctx](const io::OutputDir& out) {
+    jellyfish::SwimSimulation sim(run.settings);
+    const jellyfish::Ib2dParts& parts = sim.structure(0);
+    const int n = run.bell.bell_points;
+    const int bell_and_muscles = n + 2 * run.bell.muscle_points;
+    const int west_margin = (n + 1) / 2 - 1, east_margin = n - 1;
+    io::CsvWriter csv({"t", "centroid_y", "centroid_x", "margin_gap"});
+    std::vector<double> t, centroid_y, gap;
+    std::vector<fluid::FlowState> stroke_flows;
+    std::vector<render::FieldPicture> strokes;
+    int next_stroke = 0;
+    const double half_frame = 0.5 * run.settings.frame_interval_s;
+    const jellyfish::SwimRunStats stats = sim.run(
+        [&](const jellyfish::SwimSimulation& s) -> std::string {
+          const elastic::Body& b = s.body();
+          const Vec2 c = bell_centroid(b, parts, bell_and_muscles);
+          const double g = norm(b.points.position[static_cast<std::size_t>(parts.first_point + east_margin)] -
+                                b.points.position[static_cast<std::size_t>(parts.first_point + west_margin)]);
+          csv.row({s.time_s(), c.y, c.x, g});
+          t.push_back(s.time_s());
+          centroid_y.push_back(c.y);
+          gap.push_back(g);
+          // The end of each contraction: the muscles' rest length |cos(π t)| is 0 at t = k + ½.
+          if (next_stroke < run.cycles && std::abs(s.time_s() - (next_stroke + 0.5)) <= half_frame) {
+            render::FieldPicture p = bell_picture(s, run, c);
+            stroke_flows.push_back(s.flow());
+            char caption[96];
+            std::snprintf(caption, sizeof caption, "Re %g, N = %d: end of stroke %d, t = %.2f s", run.re, run.grid,
+                          next_stroke + 1, s.time_s());
+            p.caption = caption;
+            strokes.push_back(p);
+            ++next_stroke;
+          }
+          return {};
+        },
+        ctx.progress);
+    out.write_text("trajectory.csv", csv.text());
+
+    for (std::size_t k = 0; k < strokes.size(); ++k) strokes[k].state = &stroke_flows[k];
+    render::FieldPictureOptions po;
+    po.quantity = render::FieldQuantity::vorticity;
+    po.arrows = false;
+    po.colour_range_max = 5.0;  // 1/s, as IB2d's jellyfish vorticity plots
+    if (!strokes.empty())
+      write_via_temporary(out, "strokes.png", [&](const auto& path) {
+        render::write_field_panels_png(strokes, static_cast<int>(strokes.size()), po, path);
+      });
+
+    // Displacement of the centroid along y over each full cycle (1 s at 1 Hz).
+    std::vector<double> per_cycle;
+    for (int k = 1; k <= run.cycles; ++k) {
+      const auto at = [&](double time) {
+        for (std::size_t i = 0; i < t.size(); ++i)
+          if (std::abs(t[i] - time) <= half_frame) return std::optional<double>(centroid_y[i]);
+        return std::optional<double>();
+      };
+      const auto a = at(k - 1.0), b = at(static_cast<double>(k));
+      if (a && b) per_cycle.push_back(*b - *a);
+    }
+    double mean_later = 0.0;
+    int later = 0;
+    for (std::size_t k = 1; k < per_cycle.size() && k < 3; ++k, ++later) mean_later += per_cycle[k];
+
+    render::ChartSpec chart;
+    chart.title = "Hoover-Miller bell: centroid height and margin gap";
+    chart.x_label = "t";
+    chart.x_unit = "s";
+    chart.y_label = "m";
+    render::Series sy, sg;
+    sy.label = "centroid y - start";
+    sy.x = t;
+    for (double y : centroid_y) sy.y.push_back(y - (centroid_y.empty() ? 0.0 : centroid_y.front()));
+    sg.label = "margin gap";
+    sg.x = t;
+    sg.y = gap;
+    chart.series = {sy, sg};
+    if (!t.empty()) write_via_temporary(out, "trajectory.png", [&](const auto& path) { render::write_chart_png(chart, path); });
+
+    nlohmann::ordered_json fig;
+    fig["units"] = {{"length", "m"}, {"time", "s"}};
+    fig["re"] = run.re;
+    fig["grid"] = run.grid;
+    fig["cells"] = {run.settings.tank.cells_x, run.settings.tank.cells_y};
+    fig["markers"] = run.bell.structure.vertices.size();
+    fig["cycle_displacements_m"] = per_cycle;
+    fig["displacement_per_cycle_m"] = later > 0 ? mean_later / later : 0.0;
+    fig["margin_gap_min_m"] = gap.empty() ? 0.0 : *std::min_element(gap.begin(), gap.end());
+    fig["margin_gap_max_m"] = gap.empty() ? 0.0 : *std::max_element(gap.begin(), gap.end());
+    fig["wall_seconds_per_simulated_second"] =
+        stats.simulated_seconds > 0 ? stats.wall_seconds / stats.simulated_seconds : 0.0;
+    fig["dt_s"] = stats.steps > 0 ? stats.simulated_seconds / static_cast<double>(stats.steps) : 0.0;
+    fig["dt_min_s"] = stats.smallest_step_s;
+    fig["dt_max_s"] = stats.largest_step_s;
+    fig["steps"] = stats.steps;
+    fig["krylov_iterations"] = stats.krylov_iterations;
+    fig["simulated_seconds"] = stats.simulated_seconds;
+    fig["wall_seconds"] = stats.wall_seconds;
+    write_summary(out, "experiment hoover-miller", ctx.config, fig, stats.failure);
+    return Outcome{stats.failure};
+  };
+}
+
+}  // namespace
+
+Experiment hoover_miller_experiment() {
+  Experiment e{"hoover-miller",
+               "IB2d's Hoover-Miller jellyfish bell (its convergence example) with our coupling: swimming and cost",
+               "experiments/hoover-miller.toml", prepare_hoover_miller};
+  e.base_path = "scenes/jellyfish.toml";
+  return e;
+}
+
+}  // namespace jellysim::experiments
