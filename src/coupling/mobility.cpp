@@ -278,8 +278,10 @@ struct MobilityMatrix::Transfer {
 
 namespace {
 
-/// Is every sample of the run [first, first + width) interior, with no outflow copy?
+/// Is every sample of the run [first, first + width) interior (or on a periodic axis), with no
+/// outflow copy?
 bool clean_run(const Axis& a, bool normal, int first, int width) {
+  if (a.periodic()) return true;  // every sample is interior; the torus offsets wrap (correlate)
   for (int k = 0; k < width; ++k) {
     const int i = first + k;
     if (!interior_sample(a, normal, i)) return false;

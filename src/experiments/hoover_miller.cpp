@@ -47,13 +47,6 @@ HooverMillerRun read_hoover_miller(io::Config c) {
   return run;
 }
 
-/// Centroid of the structure's points that are not targets (the bell and its muscle markers).
-Vec2 bell_centroid(const elastic::Body& body, const jellyfish::Ib2dParts& parts, int non_target_points) {
-  Vec2 sum{};
-  for (int v = 0; v < non_target_points; ++v) sum += body.points.position[static_cast<std::size_t>(parts.first_point + v)];
-  return sum / static_cast<double>(non_target_points);
-}
-
 /// The picture of the bell (its springs; muscles thin) and the vorticity around it.
 render::FieldPicture bell_picture(const jellyfish::SwimSimulation& sim, const HooverMillerRun& run, Vec2 centre) {
   render::FieldPicture p = swim_picture(sim, 0.0);
@@ -67,7 +60,6 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     jellyfish::SwimSimulation sim(run.settings);
     const jellyfish::Ib2dParts& parts = sim.structure(0);
     const int n = run.bell.bell_points;
-    const int bell_and_muscles = n + 2 * run.bell.muscle_points;
     const int west_margin = (n + 1) / 2 - 1, east_margin = n - 1;
     io::CsvWriter csv({"t", "centroid_y", "centroid_x", "margin_gap"});
     std::vector<double> t, centroid_y, gap;
@@ -78,7 +70,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     const jellyfish::SwimRunStats stats = sim.run(
         [&](const jellyfish::SwimSimulation& s) -> std::string {
           const elastic::Body& b = s.body();
-          const Vec2 c = bell_centroid(b, parts, bell_and_muscles);
+          const Vec2 c = s.structure_centroid(0);
           const double g = norm(b.points.position[static_cast<std::size_t>(parts.first_point + east_margin)] -
                                 b.points.position[static_cast<std::size_t>(parts.first_point + west_margin)]);
           csv.row({s.time_s(), c.y, c.x, g});
@@ -90,8 +82,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
             render::FieldPicture p = bell_picture(s, run, c);
             stroke_flows.push_back(s.flow());
             char caption[96];
-            std::snprintf(caption, sizeof caption, "Re %g, N = %d: end of stroke %d, t = %.2f s", run.re, run.grid,
-                          next_stroke + 1, s.time_s());
+            std::snprintf(caption, sizeof caption, "Re %g, N %d, t = %.2f s", run.re, run.grid, s.time_s());
             p.caption = caption;
             strokes.push_back(p);
             ++next_stroke;
@@ -105,7 +96,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     render::FieldPictureOptions po;
     po.quantity = render::FieldQuantity::vorticity;
     po.arrows = false;
-    po.colour_range_max = 5.0;  // 1/s, as IB2d's jellyfish vorticity plots
+    po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
     if (!strokes.empty())
       write_via_temporary(out, "strokes.png", [&](const auto& path) {
         render::write_field_panels_png(strokes, static_cast<int>(strokes.size()), po, path);

@@ -186,6 +186,9 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         }
         rec.obstacle_forces.push_back(std::move(forces));
         rec.obstacle_outlines.push_back(std::move(outlines));
+        std::vector<Vec2> centroids;
+        for (std::size_t k = 0; k < s.structure_count(); ++k) centroids.push_back(s.structure_centroid(k));
+        rec.structure_centroids.push_back(std::move(centroids));
         if (options.record_tracers) rec.tracers.push_back(s.tracers().positions());
         return {};
       },
@@ -215,6 +218,13 @@ void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec) {
       for (std::size_t o = 0; o < rec.obstacle_forces[f].size(); ++o)
         csv.row({rec.frame_times[f], static_cast<double>(o), rec.obstacle_forces[f][o].x, rec.obstacle_forces[f][o].y});
     out.write_text("obstacles.csv", csv.text());
+  }
+  if (!rec.structure_centroids.empty() && !rec.structure_centroids.front().empty()) {
+    io::CsvWriter csv({"t", "structure", "centroid_x", "centroid_y"});
+    for (std::size_t f = 0; f < rec.structure_centroids.size(); ++f)
+      for (std::size_t k = 0; k < rec.structure_centroids[f].size(); ++k)
+        csv.row({rec.frame_times[f], static_cast<double>(k), rec.structure_centroids[f][k].x, rec.structure_centroids[f][k].y});
+    out.write_text("structures.csv", csv.text());
   }
 }
 
@@ -317,6 +327,15 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
       each.push_back({{"name", settings.obstacles[o].name}, {"mean_force", {mean.x, mean.y}}});
     }
     j["obstacles"] = each;
+  }
+  j["structure_count"] = settings.structures.size();
+  if (!settings.structures.empty() && !rec.structure_centroids.empty()) {
+    nlohmann::ordered_json each = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < settings.structures.size(); ++k) {
+      const Vec2 moved = rec.structure_centroids.back()[k] - rec.structure_centroids.front()[k];
+      each.push_back({{"name", settings.structures[k].name}, {"centroid_displacement", {moved.x, moved.y}}});
+    }
+    j["structures"] = each;
   }
   j["simulated_seconds"] = rec.stats.simulated_seconds;
   j["wall_seconds"] = rec.stats.wall_seconds;

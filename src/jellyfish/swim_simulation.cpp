@@ -197,6 +197,17 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
 
 SwimSimulation::~SwimSimulation() = default;
 
+Vec2 SwimSimulation::structure_centroid(std::size_t i) const {
+  const Ib2dParts& parts = structures_.at(i);
+  std::vector<char> target(static_cast<std::size_t>(parts.vertex_count), 0);
+  for (const elastic::Ib2dTarget& t : settings_.structures[i].structure.targets) target[static_cast<std::size_t>(t.point)] = 1;
+  Vec2 sum{};
+  int count = 0;
+  for (int v = 0; v < parts.vertex_count; ++v)
+    if (!target[static_cast<std::size_t>(v)]) sum += body().points.position[static_cast<std::size_t>(parts.first_point + v)], ++count;
+  return count > 0 ? sum / static_cast<double>(count) : sum;
+}
+
 const Jellyfish& SwimSimulation::jellyfish(std::size_t i) const {
   if (i >= school_.size()) throw std::out_of_range("no jellyfish " + std::to_string(i) + " in the scene");
   return *school_[i];

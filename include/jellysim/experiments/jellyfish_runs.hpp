@@ -34,6 +34,7 @@ struct SwimRecording {
   std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
   std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
   std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
+  std::vector<std::vector<Vec2>> structure_centroids;  ///< per frame, per IB2d structure: centroid without targets, m
   std::vector<std::vector<Vec2>> tracers;           ///< per frame, when SwimOutputOptions::record_tracers
 };
 
@@ -46,7 +47,8 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
 void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,
                        const std::string& name = "metrics.csv");
 /// For busier tanks: metrics_jellyfish_N.csv for the second jellyfish on (same columns as
-/// metrics.csv) and obstacles.csv (t, obstacle, force_x, force_y: the fluid's force, N/m).
+/// metrics.csv), obstacles.csv (t, obstacle, force_x, force_y: the fluid's force, N/m) and
+/// structures.csv (t, structure, centroid_x, centroid_y: IB2d structures without their targets, m).
 void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec);
 /// slices.csv: frame, t, part (umbrella or tentacle_k), index, x, y — the recorded 2D slices.
 void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames);

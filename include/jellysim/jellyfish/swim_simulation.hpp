@@ -87,6 +87,9 @@ class SwimSimulation {
   std::size_t structure_count() const { return structures_.size(); }
   /// Where IB2d structure i's markers, springs and targets are in body().
   const Ib2dParts& structure(std::size_t i) const { return structures_.at(i); }
+  /// Centroid of IB2d structure i's vertices that are not target points (e.g. a bell and its
+  /// muscle markers, without the targets that hold a flow blocker).
+  Vec2 structure_centroid(std::size_t i) const;
   /// Every marker of every body in one spring body (jellyfish, then obstacles, then IB2d structures).
   const elastic::Body& body() const { return world_->body(); }
   /// The flow in the whole tank (unfolded from the east half when solving the half tank).
