@@ -206,6 +206,15 @@ class Row {
   std::size_t vertex_count_;
 };
 
+/// The three points of a beam row (left, middle, right in columns 1–3), distinct.
+template <typename Beam>
+void read_beam_points(const Row& r, const char* what, Beam& beam) {
+  beam.left = r.index(0);
+  beam.middle = r.index(1);
+  beam.right = r.index(2);
+  r.distinct({beam.left, beam.middle, beam.right}, what);
+}
+
 /// Parses `text` in the file layout every kind shares (line 1 the row count, then that many rows,
 /// blank lines only at the end) and hands each row, its column count checked, to `take`.
 void parse_rows(const std::string& text, const std::string& file, const Format& format, std::size_t vertex_count,
@@ -413,20 +422,14 @@ Ib2dStructure read_ib2d_structure(const std::filesystem::path& stem) {
   });
   read_list<Ib2dBeam>(stem, kBeam, false, n, s.beams, [](const Row& r) {
     Ib2dBeam beam;
-    beam.left = r.index(0);
-    beam.middle = r.index(1);
-    beam.right = r.index(2);
-    r.distinct({beam.left, beam.middle, beam.right}, "a beam");
+    read_beam_points(r, "a beam", beam);
     beam.stiffness = r.non_negative(3);
     beam.curvature = r.number(4);
     return beam;
   });
   read_list<Ib2dNonInvariantBeam>(stem, kNonInvariantBeam, false, n, s.non_invariant_beams, [](const Row& r) {
     Ib2dNonInvariantBeam beam;
-    beam.left = r.index(0);
-    beam.middle = r.index(1);
-    beam.right = r.index(2);
-    r.distinct({beam.left, beam.middle, beam.right}, "a non-invariant beam");
+    read_beam_points(r, "a non-invariant beam", beam);
     beam.stiffness = r.non_negative(3);
     beam.curvature = {r.number(4), r.number(5)};
     return beam;

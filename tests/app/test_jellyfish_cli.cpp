@@ -340,3 +340,31 @@ TEST(JellyfishCli, SimulatesTheShippedIb2dScene) {
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,structure,centroid_x,centroid_y");
   fs::remove(dir.string() + ".log");
 }
+
+// A scene whose IB2d files are wrong: exit 2 naming the file and line, nothing written; a schedule
+// past the last spring names the object and the rows allowed.
+TEST(JellyfishCli, BadIb2dFilesAreRefusedNamingFileAndLine) {
+  const fs::path work = fresh("ib2d_bad");
+  fs::create_directories(work);
+  auto write = [&](const std::string& name, const std::string& text) { std::ofstream(work / name) << text; };
+  write("s.vertex", "3\n1.0 1.0\n1.2 1.0\n1.4 1.0\n");
+  write("s.spring", "2\n1 2 10 0.2\n2 4 10 0.2\n");  // point 4 does not exist
+  const std::string scene = "scene = \"jellyfish\"\nduration = 0.1\n[tank]\nwidth = 3.0\nheight = 3.0\n"
+                            "[jellyfish]\nenabled = false\n[[objects]]\ntype = \"ib2d\"\nfiles = \"" +
+                            (work / "s").string() + "\"\n";
+  write("scene.toml", scene);
+  const fs::path out = work / "out";
+  Result r = run_cli("simulate " + (work / "scene.toml").string() + " --quiet --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("s.spring' line 3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("index 4 is out of range [1, 3]"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  write("s.spring", "1\n1 2 10 0.2\n");
+  write("scene.toml", scene + "[[objects.schedules]]\nsprings = [1, 2]\nlaw = \"abs-cos\"\n");
+  r = run_cli("simulate " + (work / "scene.toml").string() + " --quiet --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("objects[0] (ib2d): schedules[0]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("[1, 1]"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(work);
+}
