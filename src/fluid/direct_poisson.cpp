@@ -4,6 +4,17 @@
 
 namespace jellysim::fluid {
 
+namespace {
+
+/// The volume weight of cell (i, j): r_i on an axisymmetric operator's radial axis, else 1.
+double volume(const PoissonOperator& op, int i, int j) {
+  const auto& x = op.x_axis().volume;
+  const auto& y = op.y_axis().volume;
+  return (x.empty() ? 1.0 : x[static_cast<std::size_t>(i)]) * (y.empty() ? 1.0 : y[static_cast<std::size_t>(j)]);
+}
+
+}  // namespace
+
 void DirectPoissonSolver::factor(const PoissonOperator& op) {
   if (factored_ && factored_->same_problem(op)) return;
   const int n = op.size();
@@ -23,7 +34,9 @@ void DirectPoissonSolver::factor(const PoissonOperator& op) {
         if (di != 0 && dj != 0) continue;
         const int ii = (i + di + op.nx()) % op.nx(), jj = (j + dj + op.ny()) % op.ny();  // periodic wrap included
         const int r = jj * op.nx() + ii;
-        const double value = -column[static_cast<std::size_t>(r)];
+        // Rows scaled by the cell's volume weight (1 on a planar operator), which makes the
+        // axisymmetric operator symmetric: W(−∇²) is, for the weights r_i (poisson.hpp).
+        const double value = -column[static_cast<std::size_t>(r)] * volume(op, ii, jj);
         if (value != 0.0 && r >= k) entries.emplace_back(r, k, value);  // lower triangle
         column[static_cast<std::size_t>(r)] = 0.0;
       }
@@ -43,15 +56,16 @@ PressureSolveReport DirectPoissonSolver::solve(const PoissonOperator& op, std::s
   std::span<const double> rhs = b;
   if (op.singular()) {
     compatible_.assign(b.begin(), b.end());
-    remove_mean(compatible_);
+    op.remove_weighted_mean(compatible_);
     rhs = compatible_;
   }
   const auto n = static_cast<Eigen::Index>(p.size());
   rhs_.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) rhs_[k] = -rhs[static_cast<std::size_t>(k)];  // A p = −b
+  for (Eigen::Index k = 0; k < n; ++k)  // W A p = −W b
+    rhs_[k] = -rhs[static_cast<std::size_t>(k)] * volume(op, static_cast<int>(k % op.nx()), static_cast<int>(k / op.nx()));
   solution_ = cholesky_.solve(rhs_);
   for (Eigen::Index k = 0; k < n; ++k) p[static_cast<std::size_t>(k)] = solution_[k];
-  if (op.singular()) remove_mean(p);
+  if (op.singular()) op.remove_weighted_mean(p);
   PressureSolveReport report;
   report.iterations = 1;
   report.rhs_max = max_abs(rhs);

@@ -312,7 +312,7 @@ namespace {
 class ThomasColumns final : public FftPoissonSolver::ColumnSolve {
  public:
   ThomasColumns(const PoissonOperator& op, const std::vector<double>& lambda_x, double c)
-      : nx_(op.nx()), ny_(op.ny()),
+      : nx_(op.nx()), ny_(op.ny()), volume_(op.y_axis().volume),
         lower_(static_cast<std::size_t>(ny_)),
         inverse_pivot_(cells(nx_, ny_)),
         upper_ratio_(cells(nx_, ny_)) {
@@ -365,15 +365,26 @@ class ThomasColumns final : public FftPoissonSolver::ColumnSolve {
     }
   }
 
+  /// The column's mean, volume-weighted along a radial y axis (the compatibility condition and
+  /// normalisation of the axisymmetric operator, poisson.hpp).
   void remove_column_mean(double* modes, int k) const {
-    double sum = 0.0;
-    for (int j = 0; j < ny_; ++j) sum += modes[row(j) + k];
-    const double mean = sum / ny_;
+    double sum = 0.0, total = 0.0;
+    if (volume_.empty()) {
+      for (int j = 0; j < ny_; ++j) sum += modes[row(j) + k];
+      total = ny_;
+    } else {
+      for (int j = 0; j < ny_; ++j) {
+        sum += volume_[static_cast<std::size_t>(j)] * modes[row(j) + k];
+        total += volume_[static_cast<std::size_t>(j)];
+      }
+    }
+    const double mean = sum / total;
     for (int j = 0; j < ny_; ++j) modes[row(j) + k] -= mean;
   }
   std::size_t row(int j) const { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_); }
 
   int nx_, ny_;
+  std::vector<double> volume_;                       ///< the y axis' volume weights (empty: uniform)
   std::vector<int> null_modes_;                      ///< pinned x modes (at most one)
   std::vector<double> lower_;                        ///< c · a_j (0 for j = 0)
   std::vector<double> inverse_pivot_, upper_ratio_;  ///< per (j, k), row-major like the modes
@@ -453,12 +464,44 @@ void FftPoissonSolver::plan(const PoissonOperator& op) {
 
 PressureSolveReport FftPoissonSolver::solve(const PoissonOperator& op, std::span<const double> b,
                                             std::span<double> p) {
+  if (op.geometry() == Geometry::axisymmetric) return solve_axisymmetric(op, b, p);
   plan(op);
   // Singular problems: the mean of b and of p live in the null mode alone, which the column
   // solve makes compatible and mean-free (no passes over the grid for them).
   rows_->forward(b);
   columns_->solve(rows_->modes());
   rows_->inverse(p);
+  PressureSolveReport report;
+  report.iterations = 1;
+  report.converged = true;
+  return report;
+}
+
+// The radial axis has r-dependent coefficients, so it cannot be transformed: the problem is solved
+// transposed, z along the rows (transformed) and r along the columns (a tridiagonal solve per z mode,
+// the radial operator's own three-point rows).
+PressureSolveReport FftPoissonSolver::solve_axisymmetric(const PoissonOperator& op, std::span<const double> b,
+                                                         std::span<double> p) {
+  if (op.x_axis().volume.empty() || method_ == FftPoissonMethod::r2r_2d)
+    throw std::invalid_argument("fft pressure solver: an axisymmetric operator needs its radial axis along x "
+                                "and a row-transform method");
+  const int nx = op.nx(), ny = op.ny();
+  if (!transposed_ || !transposed_source_->same_problem(op)) {
+    transposed_ = std::make_unique<PoissonOperator>(op.transposed());
+    transposed_source_ = std::make_unique<PoissonOperator>(op);
+  }
+  b_transposed_.resize(b.size());
+  p_transposed_.resize(p.size());
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      b_transposed_[static_cast<std::size_t>(i) * ny + j] = b[static_cast<std::size_t>(j) * nx + i];
+  plan(*transposed_);
+  rows_->forward(b_transposed_);
+  columns_->solve(rows_->modes());
+  rows_->inverse(p_transposed_);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      p[static_cast<std::size_t>(j) * nx + i] = p_transposed_[static_cast<std::size_t>(i) * ny + j];
   PressureSolveReport report;
   report.iterations = 1;
   report.converged = true;

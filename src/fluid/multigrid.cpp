@@ -1,5 +1,7 @@
 #include "jellysim/fluid/multigrid.hpp"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 
@@ -206,6 +208,9 @@ void MultigridSolver::v_cycle(std::size_t l, std::span<double> p, std::span<cons
 
 PressureSolveReport MultigridSolver::solve(const PoissonOperator& op, std::span<const double> b,
                                            std::span<double> p) {
+  if (op.geometry() != Geometry::planar)
+    throw std::invalid_argument("the multigrid pressure solver is planar only; the axisymmetric operator "
+                                "needs fft, direct or sor");
   build_levels(op);
   // The finest level works on the caller's p in place, and on b itself unless the problem is
   // singular (then on a copy with the mean removed).

@@ -45,16 +45,77 @@ StencilAxis make_axis(int n, double h, PressureBoundary lower_side, PressureBoun
   return a;
 }
 
+/// The radial axis: cell i at r_i = (i + ½)h between faces r_{i−½} = ih and r_{i+½} = (i + 1)h;
+/// neighbour weights r_{i∓½}/(r_i h²). The axis face (r = 0) has no neighbour and no weight; the
+/// outer side is Neumann (no flux) or Dirichlet (ghost −p: 2 r_{n}/(r_{n−½} h²) on the diagonal).
+StencilAxis make_radial_axis(int n, double h, PressureBoundary outer_side) {
+  StencilAxis a = make_axis(n, h, PressureBoundary::neumann, outer_side);
+  a.volume.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double r = (k + 0.5) * h, inner = k * h, outer = (k + 1) * h;
+    const double w = 1.0 / (r * h * h);
+    a.volume[static_cast<std::size_t>(k)] = r;
+    a.lower_weight[k] = k > 0 ? inner * w : 0.0;
+    a.upper_weight[k] = k < n - 1 ? outer * w : 0.0;
+    a.diagonal[k] = a.lower_weight[k] + a.upper_weight[k];
+    if (k == n - 1 && outer_side == PressureBoundary::dirichlet) a.diagonal[k] += 2.0 * outer * w;
+  }
+  return a;
+}
+
+void require_opposite_periodic_pairs(const std::array<PressureBoundary, 4>& sides) {
+  if ((sides[0] == PressureBoundary::periodic) != (sides[1] == PressureBoundary::periodic) ||
+      (sides[2] == PressureBoundary::periodic) != (sides[3] == PressureBoundary::periodic))
+    throw std::invalid_argument("PoissonOperator: periodic sides must come in opposite pairs");
+}
+
 }  // namespace
+
+std::string_view to_string(Geometry g) { return g == Geometry::planar ? "planar" : "axisymmetric"; }
 
 PoissonOperator::PoissonOperator(int nx, int ny, double dx, double dy,
                                  std::array<PressureBoundary, 4> sides)
     : nx_(nx), ny_(ny), dx_(dx), dy_(dy), sides_(sides),
       x_(make_axis(nx, dx, sides[0], sides[1])),
       y_(make_axis(ny, dy, sides[2], sides[3])) {
-  if ((sides[0] == PressureBoundary::periodic) != (sides[1] == PressureBoundary::periodic) ||
-      (sides[2] == PressureBoundary::periodic) != (sides[3] == PressureBoundary::periodic))
-    throw std::invalid_argument("PoissonOperator: periodic sides must come in opposite pairs");
+  require_opposite_periodic_pairs(sides);
+}
+
+PoissonOperator::PoissonOperator(int nx, int ny, double dx, double dy, std::array<PressureBoundary, 4> sides,
+                                 StencilAxis x, StencilAxis y)
+    : nx_(nx), ny_(ny), dx_(dx), dy_(dy), sides_(sides), x_(std::move(x)), y_(std::move(y)) {
+  require_opposite_periodic_pairs(sides);
+}
+
+PoissonOperator PoissonOperator::axisymmetric(int nr, int nz, double dr, double dz,
+                                              std::array<PressureBoundary, 4> sides) {
+  if (sides[0] != PressureBoundary::neumann)
+    throw std::invalid_argument("axisymmetric PoissonOperator: the west side is the axis and must be Neumann");
+  if (sides[1] == PressureBoundary::periodic)
+    throw std::invalid_argument("axisymmetric PoissonOperator: the radial axis cannot be periodic");
+  return PoissonOperator(nr, nz, dr, dz, sides, make_radial_axis(nr, dr, sides[1]), make_axis(nz, dz, sides[2], sides[3]));
+}
+
+PoissonOperator PoissonOperator::transposed() const {
+  // West/east of the transposed problem are this one's south/north, and the other way round.
+  return PoissonOperator(ny_, nx_, dy_, dx_, {sides_[2], sides_[3], sides_[0], sides_[1]}, y_, x_);
+}
+
+void PoissonOperator::remove_weighted_mean(std::span<double> values) const {
+  if (uniform()) {
+    remove_mean(values);
+    return;
+  }
+  double weighted = 0.0, total = 0.0;
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const double w = (x_.volume.empty() ? 1.0 : x_.volume[static_cast<std::size_t>(i)]) *
+                       (y_.volume.empty() ? 1.0 : y_.volume[static_cast<std::size_t>(j)]);
+      weighted += w * values[static_cast<std::size_t>(j) * nx_ + i];
+      total += w;
+    }
+  const double mean = weighted / total;
+  for (double& v : values) v -= mean;
 }
 
 bool PoissonOperator::singular() const {
@@ -63,7 +124,8 @@ bool PoissonOperator::singular() const {
 }
 
 bool PoissonOperator::same_problem(const PoissonOperator& o) const {
-  return nx_ == o.nx_ && ny_ == o.ny_ && dx_ == o.dx_ && dy_ == o.dy_ && sides_ == o.sides_;
+  return nx_ == o.nx_ && ny_ == o.ny_ && dx_ == o.dx_ && dy_ == o.dy_ && sides_ == o.sides_ &&
+         x_.volume.empty() == o.x_.volume.empty() && y_.volume.empty() == o.y_.volume.empty();
 }
 
 double PoissonOperator::neighbour_sum(std::span<const double> p, int i, int j) const {
@@ -81,7 +143,7 @@ void PoissonOperator::for_each_laplacian(std::span<const double> p, Visit&& visi
   const double centre = 2.0 * cx + 2.0 * cy;
   for (int j = 0; j < ny_; ++j) {
     const std::size_t row = static_cast<std::size_t>(j) * nx_;
-    const bool interior_row = j > 0 && j < ny_ - 1 && nx_ >= 3;
+    const bool interior_row = j > 0 && j < ny_ - 1 && nx_ >= 3 && uniform();
     if (!interior_row) {
       for (int i = 0; i < nx_; ++i) visit(row + i, neighbour_sum(p, i, j) - diagonal(i, j) * p[row + i]);
       continue;
@@ -106,7 +168,7 @@ void PoissonOperator::residual_row(std::span<const double> p, std::span<const do
   const std::size_t row = static_cast<std::size_t>(j) * nx_;
   const double* br = b.data() + row;
   auto edge = [&](int i) { out[i] = br[i] - (neighbour_sum(p, i, j) - diagonal(i, j) * p[row + i]); };
-  if (!(j > 0 && j < ny_ - 1 && nx_ >= 3)) {
+  if (!(j > 0 && j < ny_ - 1 && nx_ >= 3 && uniform())) {
     for (int i = 0; i < nx_; ++i) edge(i);
     return;
   }
@@ -133,7 +195,7 @@ double PoissonOperator::residual_max(std::span<const double> p, std::span<const 
     m[0] = std::max(m[0], std::abs(b[k] - (neighbour_sum(p, i, j) - diagonal(i, j) * p[k])));
   };
   for (int j = 0; j < ny_; ++j) {
-    const bool interior_row = j > 0 && j < ny_ - 1 && nx_ >= 3;
+    const bool interior_row = j > 0 && j < ny_ - 1 && nx_ >= 3 && uniform();
     if (!interior_row) {
       for (int i = 0; i < nx_; ++i) edge(i, j);
       continue;
@@ -164,6 +226,7 @@ double PoissonOperator::residual_max(std::span<const double> p, std::span<const 
 PoissonOperator PoissonOperator::coarsened() const {
   if (nx_ % 2 != 0 || ny_ % 2 != 0)
     throw std::logic_error("PoissonOperator::coarsened needs even cell counts");
+  if (!uniform()) throw std::logic_error("PoissonOperator::coarsened: planar operators only");
   return PoissonOperator(nx_ / 2, ny_ / 2, 2.0 * dx_, 2.0 * dy_, sides_);
 }
 

@@ -19,7 +19,7 @@ void sor_sweep(const PoissonOperator& op, std::span<const double> b, std::span<d
 PressureSolveReport SorSolver::solve(const PoissonOperator& op, std::span<const double> b,
                                      std::span<double> p) {
   rhs_.assign(b.begin(), b.end());
-  if (op.singular()) remove_mean(rhs_);
+  if (op.singular()) op.remove_weighted_mean(rhs_);
   PressureSolveReport report;
   report.rhs_max = max_abs(rhs_);
   const double target = std::max(settings_.relative_tolerance * report.rhs_max, settings_.absolute_tolerance);
@@ -31,7 +31,7 @@ PressureSolveReport SorSolver::solve(const PoissonOperator& op, std::span<const 
     report.residual_max = op.residual_max(p, rhs_);
   }
   report.converged = report.residual_max <= target;
-  if (op.singular()) remove_mean(p);
+  if (op.singular()) op.remove_weighted_mean(p);
   return report;
 }
 

@@ -21,6 +21,9 @@
 // and a twiddle), two rows per complex DFT: much faster than FFTW's REDFT10/REDFT01 for lengths
 // such as 60. A singular problem's null mode (constants) is handled in mode space: b's mean is
 // removed and p is returned mean-free.
+//
+// An axisymmetric operator (poisson.hpp) is solved transposed: a transform along z and, per z mode,
+// a tridiagonal solve along r with the radial coefficients; its null mode's mean is volume-weighted.
 #include <memory>
 #include <vector>
 
@@ -59,11 +62,14 @@ class FftPoissonSolver final : public PressureSolver {
 
  private:
   void plan(const PoissonOperator& op);
+  PressureSolveReport solve_axisymmetric(const PoissonOperator& op, std::span<const double> b, std::span<double> p);
 
   FftPoissonMethod method_;
   std::unique_ptr<PoissonOperator> planned_;
   std::unique_ptr<RowTransform> rows_;
   std::unique_ptr<ColumnSolve> columns_;
+  std::unique_ptr<PoissonOperator> transposed_, transposed_source_;  ///< the axisymmetric problem, transposed
+  std::vector<double> b_transposed_, p_transposed_;
 };
 
 /// The 1D eigenvalues −(2 − 2cos θ_k)/h² of the cell-centred Laplacian with the given sides, in

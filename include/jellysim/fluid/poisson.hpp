@@ -4,6 +4,14 @@
 // from both the sum and the diagonal, a Dirichlet (p = 0 on the side) side adds 2/h² to the
 // diagonal (ghost value −p), a periodic side wraps to the opposite cell. Arrays are row-major,
 // index j·nx + i, without ghosts.
+//
+// Axisymmetric geometry (beyond the thesis; issue 22): x is the radius r, from the axis r = 0 at the
+// west side, y the axial coordinate z, and the operator is the Laplacian of a body of revolution,
+//   (1/r) ∂/∂r (r ∂p/∂r) + ∂²p/∂z²,
+// discretised conservatively: (1/r_i) [r_{i+½} (p_{i+1} − p_i) − r_{i−½} (p_i − p_{i−1})] / Δr²,
+// r_i = (i + ½)Δr. The axis face has r = 0 and passes no flux (the symmetry condition). The operator
+// is symmetric in the volume-weighted inner product Σ r_i p_i q_i; a singular problem's right-hand
+// side is compatible when its volume-weighted mean Σ r_i b_i / Σ r_i vanishes.
 #include <array>
 #include <memory>
 #include <span>
@@ -20,13 +28,25 @@ namespace jellysim::fluid {
 struct StencilAxis {
   std::vector<int> lower, upper;
   std::vector<double> lower_weight, upper_weight, diagonal;  // 1/h² units
+  /// A radial axis: every cell's volume weight r_i (m); empty for a Cartesian axis (weight 1).
+  std::vector<double> volume;
 };
+
+/// Planar (Cartesian x, y) or axisymmetric (x = r from the axis, y = z) flow.
+enum class Geometry { planar, axisymmetric };
+std::string_view to_string(Geometry g);
 
 class PoissonOperator {
  public:
   PoissonOperator(int nx, int ny, double dx, double dy, std::array<PressureBoundary, 4> sides);
   PoissonOperator(const MacGrid& g, const Boundaries& b)
       : PoissonOperator(g.nx, g.ny, g.dx(), g.dy(), pressure_boundaries(b)) {}
+  /// The axisymmetric operator on nr × nz cells of Δr × Δz: the axis is the west side, which must be
+  /// Neumann (throws std::invalid_argument otherwise, or for a periodic r axis).
+  static PoissonOperator axisymmetric(int nr, int nz, double dr, double dz, std::array<PressureBoundary, 4> sides);
+  /// The same cells with the axes exchanged (x ↔ y, sides rotated accordingly), for solvers that
+  /// transform along x: p^T solves the transposed problem with b^T.
+  PoissonOperator transposed() const;
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -36,6 +56,10 @@ class PoissonOperator {
   const std::array<PressureBoundary, 4>& sides() const { return sides_; }
   const StencilAxis& x_axis() const { return x_; }
   const StencilAxis& y_axis() const { return y_; }
+  Geometry geometry() const { return x_.volume.empty() && y_.volume.empty() ? Geometry::planar : Geometry::axisymmetric; }
+  /// Makes a singular problem's right-hand side compatible: subtracts its volume-weighted mean (the
+  /// plain mean on a planar operator), which is also how a singular solution is normalised.
+  void remove_weighted_mean(std::span<double> values) const;
   /// No Dirichlet side: p is defined up to a constant and b must have zero mean.
   bool singular() const;
   bool same_problem(const PoissonOperator& o) const;
@@ -57,6 +81,11 @@ class PoissonOperator {
   /// Calls visit(k, (∇²p)_k) for every cell k.
   template <class Visit>
   void for_each_laplacian(std::span<const double> p, Visit&& visit) const;
+
+  PoissonOperator(int nx, int ny, double dx, double dy, std::array<PressureBoundary, 4> sides, StencilAxis x,
+                  StencilAxis y);
+  /// Constant interior coefficients (the fast stencil of the interior rows applies).
+  bool uniform() const { return x_.volume.empty() && y_.volume.empty(); }
 
   int nx_, ny_;
   double dx_, dy_;
