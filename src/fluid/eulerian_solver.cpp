@@ -119,12 +119,65 @@ double convection_v(const Velocity& vel, int i, int j, double gamma) {
   return (east - west) / g.dx() + (north - south) / g.dy();
 }
 
+// ---- Axisymmetric flow without swirl (x = r from the axis, y = z; fluid_solver.hpp) ----
+// u = u_r on the r-faces at r = iΔr, v = u_z on the z-faces at the cell radii r_i = (i + ½)Δr.
+
+double axisymmetric_viscous_u(const Field& u, int i, int j) {
+  // (1/r) ∂/∂r (r ∂u/∂r) − u/r² + ∂²u/∂z², the r-derivatives through the cell centres either side.
+  const MacGrid& g = u.grid();
+  const double r = i * g.dx(), c = u(i, j);
+  const double radial = ((i + 0.5) * (u(i + 1, j) - c) - (i - 0.5) * (c - u(i - 1, j))) / (i * g.dx() * g.dx());
+  return radial - c / (r * r) + (u(i, j + 1) - 2.0 * c + u(i, j - 1)) / (g.dy() * g.dy());
+}
+
+double axisymmetric_viscous_v(const Field& v, int i, int j) {
+  // (1/r) ∂/∂r (r ∂v/∂r) + ∂²v/∂z², fluxes through the faces at iΔr and (i + 1)Δr (none at the axis).
+  const MacGrid& g = v.grid();
+  const double c = v(i, j);
+  const double radial = ((i + 1.0) * (v(i + 1, j) - c) - i * (c - v(i - 1, j))) / ((i + 0.5) * g.dx() * g.dx());
+  return radial + (v(i, j + 1) - 2.0 * c + v(i, j - 1)) / (g.dy() * g.dy());
+}
+
+double axisymmetric_convection_u(const Velocity& vel, int i, int j, double gamma) {
+  // (1/r) ∂(r u²)/∂r + ∂(uv)/∂z (no swirl: no −u_θ²/r), the r-fluxes at the cell centres.
+  const Field& u = vel.u;
+  const Field& v = vel.v;
+  const MacGrid& g = u.grid();
+  const double east = blended_flux(0.5 * (u(i, j) + u(i + 1, j)), u(i, j), u(i + 1, j), gamma);
+  const double west = blended_flux(0.5 * (u(i - 1, j) + u(i, j)), u(i - 1, j), u(i, j), gamma);
+  const double north = blended_flux(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j), u(i, j + 1), gamma);
+  const double south = blended_flux(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 1), u(i, j), gamma);
+  return ((i + 0.5) * east - (i - 0.5) * west) / (i * g.dx()) + (north - south) / g.dy();
+}
+
+double axisymmetric_convection_v(const Velocity& vel, int i, int j, double gamma) {
+  // (1/r) ∂(r u v)/∂r + ∂(v²)/∂z, the r-fluxes through the faces at iΔr (zero on the axis) and (i + 1)Δr.
+  const Field& u = vel.u;
+  const Field& v = vel.v;
+  const MacGrid& g = u.grid();
+  const double east = blended_flux(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i, j), v(i + 1, j), gamma);
+  const double west = blended_flux(0.5 * (u(i, j - 1) + u(i, j)), v(i - 1, j), v(i, j), gamma);
+  const double north = blended_flux(0.5 * (v(i, j) + v(i, j + 1)), v(i, j), v(i, j + 1), gamma);
+  const double south = blended_flux(0.5 * (v(i, j - 1) + v(i, j)), v(i, j - 1), v(i, j), gamma);
+  return ((i + 1.0) * east - i * west) / ((i + 0.5) * g.dx()) + (north - south) / g.dy();
+}
+
 EulerianSolver::EulerianSolver(const MacGrid& grid, const FluidSettings& settings)
-    : FluidSolver(grid, settings), predictor_(grid) {}
+    : FluidSolver(grid, settings), predictor_(grid) {
+  if (settings.geometry == Geometry::axisymmetric && settings.convection != ConvectionScheme::donor_cell)
+    throw std::invalid_argument("axisymmetric flow: only donor-cell convection so far");
+}
 
 double EulerianSolver::stable_time_step() const {
-  return stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor,
-                             settings_.convection, &settings_.boundaries);
+  const double dt = stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor,
+                                        settings_.convection, &settings_.boundaries);
+  if (settings_.geometry == Geometry::planar || settings_.viscosity_m2_per_s <= 0.0) return dt;
+  // The radial viscous operator of u_r next to the axis has Gershgorin sum 5/Δr² (−u/r² included)
+  // where the planar one has 4/Δx²: forward Euler needs Δt ≤ 2/(ν (5/Δr² + 4/Δz²)).
+  const MacGrid& g = state_.grid;
+  const double axisymmetric_viscous =
+      2.0 / (settings_.viscosity_m2_per_s * (5.0 / (g.dx() * g.dx()) + 4.0 / (g.dy() * g.dy())));
+  return std::min(dt, settings_.safety_factor * axisymmetric_viscous);
 }
 
 double EulerianSolver::donor_cell_blend(double dt_s) const {
@@ -135,8 +188,9 @@ double EulerianSolver::donor_cell_blend(double dt_s) const {
   return std::min(1.0, courant);
 }
 
-template <class ConvectionU, class ConvectionV>
-void EulerianSolver::compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at) {
+template <class ConvectionU, class ConvectionV, class ViscousU, class ViscousV>
+void EulerianSolver::compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at,
+                                            ViscousU&& viscous_u_at, ViscousV&& viscous_v_at) {
   const Velocity& vel = state_.velocity;
   const double nu = settings_.viscosity_m2_per_s;
   const Vec2 gravity = settings_.gravity_m_per_s2;
@@ -144,14 +198,22 @@ void EulerianSolver::compute_predictor_with(double dt_s, ConvectionU&& convectio
   const FaceRange ru = interior_u_faces(state_.grid, settings_.boundaries);
   for (int j = ru.j_begin; j < ru.j_end; ++j)
     for (int i = ru.i_begin; i < ru.i_end; ++i)
-      predictor_.u(i, j) = vel.u(i, j) + dt_s * (nu * face_laplacian(vel.u, i, j) - convection_u_at(i, j) +
+      predictor_.u(i, j) = vel.u(i, j) + dt_s * (nu * viscous_u_at(i, j) - convection_u_at(i, j) +
                                                  gravity.x + body_acceleration_.u(i, j));
   const FaceRange rv = interior_v_faces(state_.grid, settings_.boundaries);
   for (int j = rv.j_begin; j < rv.j_end; ++j)
     for (int i = rv.i_begin; i < rv.i_end; ++i)
-      predictor_.v(i, j) = vel.v(i, j) + dt_s * (nu * face_laplacian(vel.v, i, j) - convection_v_at(i, j) +
+      predictor_.v(i, j) = vel.v(i, j) + dt_s * (nu * viscous_v_at(i, j) - convection_v_at(i, j) +
                                                  gravity.y + body_acceleration_.v(i, j));
   apply_velocity_boundaries(predictor_, settings_.boundaries);
+}
+
+template <class ConvectionU, class ConvectionV>
+void EulerianSolver::compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at) {
+  const Velocity& vel = state_.velocity;
+  compute_predictor_with(
+      dt_s, convection_u_at, convection_v_at, [&](int i, int j) { return face_laplacian(vel.u, i, j); },
+      [&](int i, int j) { return face_laplacian(vel.v, i, j); });
 }
 
 template <ConvectionScheme S>
@@ -166,6 +228,12 @@ void EulerianSolver::compute_limited_predictor(double dt_s) {
 
 void EulerianSolver::compute_predictor(double dt_s, double gamma) {
   const Velocity& vel = state_.velocity;
+  if (settings_.geometry == Geometry::axisymmetric)
+    return compute_predictor_with(
+        dt_s, [&](int i, int j) { return axisymmetric_convection_u(vel, i, j, gamma); },
+        [&](int i, int j) { return axisymmetric_convection_v(vel, i, j, gamma); },
+        [&](int i, int j) { return axisymmetric_viscous_u(vel.u, i, j); },
+        [&](int i, int j) { return axisymmetric_viscous_v(vel.v, i, j); });
   switch (settings_.convection) {
     case ConvectionScheme::van_leer: return compute_limited_predictor<ConvectionScheme::van_leer>(dt_s);
     case ConvectionScheme::koren: return compute_limited_predictor<ConvectionScheme::koren>(dt_s);

@@ -15,8 +15,16 @@ FluidSolver::FluidSolver(const MacGrid& grid, const FluidSettings& settings)
     : settings_(settings),
       state_(grid),
       body_acceleration_(grid),
-      projector_(make_pressure_solver(settings.pressure_solver, settings.pressure)) {
+      projector_(make_pressure_solver(settings.pressure_solver, settings.pressure), settings.geometry) {
   settings_.boundaries.validate();
+  if (settings_.geometry == Geometry::axisymmetric) {
+    if (grid.origin_m.x != 0.0)
+      throw std::invalid_argument("axisymmetric flow: the grid must start on the axis (origin x = 0)");
+    if (settings_.boundaries.west.type != BoundaryType::free_slip)
+      throw std::invalid_argument("axisymmetric flow: the west side is the axis and must be free-slip (symmetry)");
+    if (settings_.pressure_solver == "multigrid")
+      throw std::invalid_argument("axisymmetric flow: the multigrid pressure solver is planar only (use fft, direct or sor)");
+  }
   projector_.set_extrapolation(settings_.extrapolate_pressure_guess);
   if (!(settings_.viscosity_m2_per_s >= 0.0)) throw std::invalid_argument("viscosity must be >= 0");
   if (!(settings_.density_kg_per_m3 > 0.0)) throw std::invalid_argument("density must be > 0");

@@ -10,6 +10,21 @@ double cell_divergence(const Velocity& vel, int i, int j) {
   return (vel.u(i + 1, j) - vel.u(i, j)) / g.dx() + (vel.v(i, j + 1) - vel.v(i, j)) / g.dy();
 }
 
+double axisymmetric_cell_divergence(const Velocity& vel, int i, int j) {
+  const MacGrid& g = vel.u.grid();
+  return (static_cast<double>(i + 1) * vel.u(i + 1, j) - static_cast<double>(i) * vel.u(i, j)) / ((i + 0.5) * g.dx()) +
+         (vel.v(i, j + 1) - vel.v(i, j)) / g.dy();
+}
+
+double max_divergence(const Velocity& vel, Geometry geometry) {
+  if (geometry == Geometry::planar) return max_divergence(vel);
+  const MacGrid& g = vel.u.grid();
+  double m = 0.0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) m = std::max(m, std::abs(axisymmetric_cell_divergence(vel, i, j)));
+  return m;
+}
+
 Field divergence(const Velocity& vel) {
   const MacGrid& g = vel.u.grid();
   Field d(g, kCellCentres);
@@ -56,7 +71,9 @@ void fill_pressure_ghosts(Field& p, const Boundaries& b) {
 PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, double dt_s,
                                        double density_kg_per_m3) {
   const MacGrid& g = state.grid;
-  const PoissonOperator op(g, b);
+  const bool radial = geometry_ == Geometry::axisymmetric;
+  const PoissonOperator op = radial ? PoissonOperator::axisymmetric(g.nx, g.ny, g.dx(), g.dy(), pressure_boundaries(b))
+                                    : PoissonOperator(g, b);
   const std::size_t n = static_cast<std::size_t>(g.cell_count());
   rhs_.resize(n);
   phi_.resize(n);
@@ -82,7 +99,13 @@ PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, do
     const std::size_t row = static_cast<std::size_t>(j) * g.nx;
     double* rhs = rhs_.data() + row;
     double* phi = phi_.data() + row;
-    for (int i = 0; i < g.nx; ++i) rhs[i] = ((ur[i + 1] - ur[i]) * inv_dx + (vn[i] - vr[i]) * inv_dy) * inv_dt;  // eq. 3.3
+    if (radial) {  // (1/r) ∂(r u)/∂r with face radii iΔr, cell radii (i + ½)Δr
+      for (int i = 0; i < g.nx; ++i)
+        rhs[i] = ((static_cast<double>(i + 1) * ur[i + 1] - static_cast<double>(i) * ur[i]) / (i + 0.5) * inv_dx +
+                  (vn[i] - vr[i]) * inv_dy) * inv_dt;
+    } else {
+      for (int i = 0; i < g.nx; ++i) rhs[i] = ((ur[i + 1] - ur[i]) * inv_dx + (vn[i] - vr[i]) * inv_dy) * inv_dt;  // eq. 3.3
+    }
     if (history) {
       const double* last = last_phi_.data() + row;
       const double* previous = previous_phi_.data() + row;

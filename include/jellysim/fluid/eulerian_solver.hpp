@@ -31,6 +31,10 @@ class EulerianSolver final : public FluidSolver {
   /// Eq. 4.6 with the convective terms at face (i, j) given by the two callables.
   template <class ConvectionU, class ConvectionV>
   void compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at);
+  /// The same with the viscous terms (ν times them) given too (the axisymmetric operators).
+  template <class ConvectionU, class ConvectionV, class ViscousU, class ViscousV>
+  void compute_predictor_with(double dt_s, ConvectionU&& convection_u_at, ConvectionV&& convection_v_at,
+                              ViscousU&& viscous_u_at, ViscousV&& viscous_v_at);
 
   Velocity predictor_;
   double last_gamma_ = 0.0;
@@ -47,5 +51,16 @@ double convection_u_limited(const Velocity& vel, const Boundaries& b, int i, int
 double convection_v_limited(const Velocity& vel, const Boundaries& b, int i, int j, ConvectionScheme scheme);
 /// Five-point Laplacian of a face field at (i, j) (ghosts must be filled).
 double face_laplacian(const Field& f, int i, int j);
+
+// Axisymmetric flow without swirl (x = r from the axis, y = z): u_r on the r-faces at r = iΔr
+// (i ≥ 1: the axis face is a wall), u_z on the z-faces at the cell radii (i + ½)Δr.
+/// (1/r) ∂/∂r (r ∂u_r/∂r) − u_r/r² + ∂²u_r/∂z² at the r-face (i, j), i ≥ 1.
+double axisymmetric_viscous_u(const Field& u, int i, int j);
+/// (1/r) ∂/∂r (r ∂u_z/∂r) + ∂²u_z/∂z² at the z-face (i, j); no flux through the axis.
+double axisymmetric_viscous_v(const Field& v, int i, int j);
+/// (1/r) ∂(r u_r²)/∂r + ∂(u_r u_z)/∂z with donor-cell weight γ.
+double axisymmetric_convection_u(const Velocity& vel, int i, int j, double gamma);
+/// (1/r) ∂(r u_r u_z)/∂r + ∂(u_z²)/∂z with donor-cell weight γ.
+double axisymmetric_convection_v(const Velocity& vel, int i, int j, double gamma);
 
 }  // namespace jellysim::fluid

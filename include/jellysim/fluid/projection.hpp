@@ -12,13 +12,20 @@ namespace jellysim::fluid {
 
 /// Discrete divergence at the cell centres (1/s): (u_{i+1,j} − u_{i,j})/Δx + (v_{i,j+1} − v_{i,j})/Δy.
 double cell_divergence(const Velocity& vel, int i, int j);
+/// The axisymmetric divergence (x = r from the axis, y = z): (r_{i+½} u_{i+1,j} − r_{i−½} u_{i,j})/(r_i Δr)
+/// + (v_{i,j+1} − v_{i,j})/Δz, with r_i = (i + ½)Δr.
+double axisymmetric_cell_divergence(const Velocity& vel, int i, int j);
+/// max |∇·u| over all cells in the given geometry.
+double max_divergence(const Velocity& vel, Geometry geometry);
 Field divergence(const Velocity& vel);
 /// max |∇·u| over all cells.
 double max_divergence(const Velocity& vel);
 
 class Projector {
  public:
-  explicit Projector(std::unique_ptr<PressureSolver> solver) : solver_(std::move(solver)) {}
+  explicit Projector(std::unique_ptr<PressureSolver> solver, Geometry geometry = Geometry::planar)
+      : solver_(std::move(solver)), geometry_(geometry) {}
+  Geometry geometry() const { return geometry_; }
 
   /// Makes state.velocity discretely divergence-free (normal velocities on the sides must be set)
   /// and stores the pressure (Pa) in state.pressure. Initial guess: the old pressure; with
@@ -34,6 +41,7 @@ class Projector {
 
  private:
   std::unique_ptr<PressureSolver> solver_;
+  Geometry geometry_;
   std::vector<double> rhs_, phi_;
   // φ = p/ρ of the last two projections (for the extrapolated initial guess) and their Δt.
   std::vector<double> last_phi_, previous_phi_;
