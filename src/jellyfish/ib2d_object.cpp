@@ -52,10 +52,8 @@ void validate(const Ib2dObjectSpec& spec) {
       throw std::invalid_argument(where + ": a sine schedule needs mean ≥ |amplitude| (the value must stay ≥ 0)");
     if (s.law != ScheduleLaw::sine && s.amplitude < 0.0)
       throw std::invalid_argument(where + ": amplitude must be ≥ 0");
-    for (int r = s.first; r <= s.last; ++r)
-      if (spec.structure.springs[static_cast<std::size_t>(r)].degree != 1.0 && s.stiffness == false &&
-          s.law == ScheduleLaw::stroke && s.gamma <= 0.0)
-        throw std::invalid_argument(where + ": gamma must be > 0");
+    if (s.law == ScheduleLaw::stroke && !(s.gamma > 0.0 && s.gamma <= 1.0))
+      throw std::invalid_argument(where + ": gamma must lie in (0, 1]");
   }
 }
 

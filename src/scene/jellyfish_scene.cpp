@@ -386,11 +386,16 @@ jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::strin
     o.choice("model", {"hoover-miller"});
     jellyfish::HooverMillerSpec hm;
     // By default IB2d's N of the tank's grid: mesh width 8/N m.
-    hm.resolution = static_cast<int>(std::lround(8.0 * tank.cells_y / tank.height_m));
-    if (o.has("resolution")) hm.resolution = static_cast<int>(o.integer("resolution", 16, 4096));
-    if (hm.resolution < 16 || hm.resolution > 4096)
-      throw InputError(where + ": the tank's mesh width " + io::format_number(tank.height_m / tank.cells_y) +
-                       " m gives IB2d's N = " + std::to_string(hm.resolution) + ", outside [16, 4096]; set 'resolution'");
+    if (o.has("resolution")) {
+      hm.resolution = static_cast<int>(o.integer("resolution", 16, 4096));
+    } else {
+      const double n = std::round(8.0 * tank.cells_y / tank.height_m);
+      if (!(n >= 16 && n <= 4096))
+        throw InputError(where + ": the tank's mesh width " + io::format_number(tank.height_m / tank.cells_y) +
+                         " m gives IB2d's N = 8 m / mesh width = " + io::format_number(n) +
+                         ", outside [16, 4096]; set 'resolution'");
+      hm.resolution = static_cast<int>(n);
+    }
     if (hm.resolution % 8 != 0)
       throw InputError(where + ": field 'resolution' = " + std::to_string(hm.resolution) + " must be a multiple of 8");
     const jellyfish::HooverMillerBell bell = jellyfish::hoover_miller_bell(hm);
