@@ -90,7 +90,8 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
       settings_(settings),
       actuator_(std::move(actuator)),
       time_s_(fluid.time_s()),
-      projector_(fluid::make_pressure_solver(fluid.settings().pressure_solver, fluid.settings().pressure)),
+      projector_(fluid::make_pressure_solver(fluid.settings().pressure_solver, fluid.settings().pressure),
+                 fluid.settings().geometry),
       scratch_(fluid.state().grid),
       homogeneous_(fluid.settings().boundaries.homogeneous()),
       base_field_(fluid.state().grid),
@@ -99,6 +100,10 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
   if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
   if (settings_.west_mirror && homogeneous_.west.type != fluid::BoundaryType::free_slip)
     throw std::invalid_argument("a mirror west side must be a free-slip wall");
+  if (axisymmetric() && (settings_.west_mirror || settings_.preconditioner == Preconditioner::mobility))
+    throw std::invalid_argument("axisymmetric coupling: the markers are rings about the axis; no mirror half "
+                                "tank, and the mobility preconditioner (a planar table) is not available yet: "
+                                "use preconditioner none");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
   refresh_markers();
 }
@@ -177,10 +182,18 @@ void ImmersedBoundary::build_symmetric_unknowns() {
   picked_rows_matrix_.setFromTriplets(rows.begin(), rows.end());
 }
 
+void ImmersedBoundary::spread(std::span<const Vec2> points, std::span<const Vec2> forces,
+                              fluid::FaceAccelerations& acc) const {
+  const double rho = fluid_.settings().density_kg_per_m3;
+  if (axisymmetric()) spread_forces_axisymmetric(points, forces, settings_.kernel, rho, acc, periodicity().y);
+  else spread_forces(points, forces, settings_.kernel, rho, acc, periodicity());
+}
+
 void ImmersedBoundary::interpolate_at_markers(const fluid::Velocity& vel, std::vector<Vec2>& out) const {
   const auto& x = body_.points.position;
   out.resize(x.size());
-  if (settings_.west_mirror) interpolate_velocities(transfer_, vel, x, out);
+  if (axisymmetric()) interpolate_velocities_axisymmetric(vel, x, settings_.kernel, out, periodicity().y);
+  else if (settings_.west_mirror) interpolate_velocities(transfer_, vel, x, out);
   else interpolate_velocities(vel, x, settings_.kernel, out, periodicity());
 }
 
@@ -206,6 +219,7 @@ double ImmersedBoundary::next_time_step() const {
   double marker_speed = 0.0;
   for (Vec2 v : body_.points.velocity) marker_speed = std::max(marker_speed, std::max(std::abs(v.x), std::abs(v.y)));
   if (marker_speed > 0.0) dt = std::min(dt, settings_.safety_factor * std::min(g.dx(), g.dy()) / marker_speed);
+  if (axisymmetric()) dt = std::min(dt, fluid_.stable_time_step());  // its viscous limit near the axis
   if (!(dt == dt)) return 0.0;
   return std::min(dt, settings_.max_time_step_s);
 }
@@ -262,8 +276,7 @@ CoupledStepReport ImmersedBoundary::step_explicit(double dt_s) {
   fluid::FaceAccelerations& acc = fluid_.body_acceleration();
   acc.u.fill(0.0);
   acc.v.fill(0.0);
-  spread_forces(body_.points.position, force_, settings_.kernel, fluid_.settings().density_kg_per_m3, acc,
-                periodicity());
+  spread(body_.points.position, force_, acc);
   report.fluid = fluid_.step(dt_s);
   move_markers_with_fluid(dt_s);
   return report;
@@ -273,8 +286,7 @@ void ImmersedBoundary::spread_to_interior_faces(std::span<Vec2> forces, fluid::V
   w.u.fill(0.0);
   w.v.fill(0.0);
   mask_target_forces(forces);  // targets hold the body from outside; they push no fluid
-  spread_forces(body_.points.position, forces, settings_.kernel, fluid_.settings().density_kg_per_m3, w,
-                periodicity());
+  spread(body_.points.position, forces, w);
   const fluid::MacGrid& g = scratch_.grid;
   keep_only(w.u, fluid::interior_u_faces(g, homogeneous_));
   keep_only(w.v, fluid::interior_v_faces(g, homogeneous_));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace jellysim::coupling {
 
@@ -83,6 +84,64 @@ void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, K
   for (std::size_t p = 0; p < points.size(); ++p) {
     spread(acc.u, make_stencil(acc.u, points[p], k, periodic), forces[p].x * to_acceleration);
     spread(acc.v, make_stencil(acc.v, points[p], k, periodic), forces[p].y * to_acceleration);
+  }
+}
+
+namespace {
+
+/// Sample index a along x of a stencil folded across the axis (x = 0): a face-centred (normal)
+/// sample −i is face i with sign −1, a cell-centred sample −1 − i is cell i with sign +1.
+struct Folded {
+  int i;
+  double sign;
+};
+Folded fold_across_axis(int i, bool normal) {
+  if (i >= 0) return {i, 1.0};
+  return normal ? Folded{-i, -1.0} : Folded{-1 - i, 1.0};
+}
+
+/// Calls visit(i, j, weight) for every sample of the field the ring at p touches, folded.
+template <class Visit>
+void for_each_folded_sample(const fluid::Field& field, Vec2 p, Kernel k, bool normal, bool periodic_z, Visit&& visit) {
+  const Stencil s = make_stencil(field, p, k, Periodicity{false, periodic_z});
+  for (int b = 0; b < s.width; ++b) {
+    if (s.wy[b] == 0.0) continue;
+    for (int a = 0; a < s.width; ++a) {
+      // make_stencil zeroes samples beyond the ghost layer; across the axis they are images.
+      const int i = s.i0 + a;
+      const double wx = i < -1 ? kernel_weight(k, field.grid().grid_from_world(p).x - field.staggering().x - i) : s.wx[a];
+      if (wx == 0.0) continue;
+      const Folded f = fold_across_axis(i, normal);
+      visit(f.i, s.index_y(b), f.sign * wx * s.wy[b]);
+    }
+  }
+}
+
+}  // namespace
+
+void interpolate_velocities_axisymmetric(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k,
+                                         std::span<Vec2> out, bool periodic_z) {
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    double ur = 0.0, uz = 0.0;
+    for_each_folded_sample(vel.u, points[p], k, true, periodic_z, [&](int i, int j, double w) { ur += w * vel.u(i, j); });
+    for_each_folded_sample(vel.v, points[p], k, false, periodic_z, [&](int i, int j, double w) { uz += w * vel.v(i, j); });
+    out[p] = {ur, uz};
+  }
+}
+
+void spread_forces_axisymmetric(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k,
+                                double density_kg_per_m3, fluid::FaceAccelerations& acc, bool periodic_z) {
+  const fluid::MacGrid& g = acc.u.grid();
+  const double volume = 2.0 * std::numbers::pi * g.dx() * g.dy();  // per unit radius
+  const double to_acceleration = 1.0 / (density_kg_per_m3 * volume);
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    for_each_folded_sample(acc.u, points[p], k, true, periodic_z, [&](int i, int j, double w) {
+      if (i == 0) return;  // the axis face: u_r = 0 there
+      acc.u(i, j) += forces[p].x * w * to_acceleration / (i * g.dx());
+    });
+    for_each_folded_sample(acc.v, points[p], k, false, periodic_z, [&](int i, int j, double w) {
+      acc.v(i, j) += forces[p].y * w * to_acceleration / ((i + 0.5) * g.dx());
+    });
   }
 }
 

@@ -121,6 +121,10 @@ class ImmersedBoundary {
   void project_spread_forces(std::span<Vec2> forces);
   /// w = S F / ρ on the interior faces (eq. 4.19), zero elsewhere; target points spread nothing.
   void spread_to_interior_faces(std::span<Vec2> forces, fluid::Velocity& w);
+  /// Axisymmetric flow (fluid::Geometry): every marker is a ring about the axis (kernels.hpp).
+  bool axisymmetric() const { return fluid_.settings().geometry == fluid::Geometry::axisymmetric; }
+  /// Spreads marker forces as accelerations onto the faces (planar or ring form).
+  void spread(std::span<const Vec2> points, std::span<const Vec2> forces, fluid::FaceAccelerations& acc) const;
   /// The tank's periodic axes: the kernel wraps around their seams.
   Periodicity periodicity() const { return {homogeneous_.periodic_x(), homogeneous_.periodic_y()}; }
   /// Where target point p is at time t (pinned: where it is; prescribed: on its path).

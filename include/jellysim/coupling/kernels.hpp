@@ -63,4 +63,21 @@ void interpolate_velocities(const fluid::Velocity& vel, std::span<const Vec2> po
 void spread_forces(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k, double density_kg_per_m3,
                    fluid::FaceAccelerations& acc, Periodicity periodic = {});
 
+// ---- Axisymmetric flow (fluid::Geometry::axisymmetric: x = r from the axis, y = z) ----
+// Each point is a ring of radius r around the axis. Its force F (N, the whole ring's) spreads as
+// the force density F w / (2π r_face Δr Δz) on the faces its kernel covers (w the kernel weight,
+// r_face the face's radius), and its velocity is Σ w u_face: the two are adjoint in the
+// volume-weighted inner product Σ_faces 2π r Δr Δz a·u (tests/coupling/test_kernels.cpp). Where the
+// kernel reaches across the axis, its samples fold onto their mirror images: u_r is odd across the
+// axis (face −i ↔ face i, sign −1), u_z even (cell −1 − i ↔ cell i); the axis face itself carries
+// u_r = 0 and takes no force.
+
+/// Fluid velocity (m/s) at each ring (needs filled ghosts); `periodic_z`: the z axis wraps.
+void interpolate_velocities_axisymmetric(const fluid::Velocity& vel, std::span<const Vec2> points, Kernel k,
+                                         std::span<Vec2> out, bool periodic_z = false);
+/// Adds the accelerations that ring forces F (N per ring) give the fluid: a(face) += Σ F w /
+/// (ρ 2π r_face Δr Δz).
+void spread_forces_axisymmetric(std::span<const Vec2> points, std::span<const Vec2> forces, Kernel k,
+                                double density_kg_per_m3, fluid::FaceAccelerations& acc, bool periodic_z = false);
+
 }  // namespace jellysim::coupling
