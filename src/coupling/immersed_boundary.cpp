@@ -100,10 +100,8 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
   if (!(settings_.max_time_step_s > 0.0)) throw std::invalid_argument("coupling max time step must be > 0");
   if (settings_.west_mirror && homogeneous_.west.type != fluid::BoundaryType::free_slip)
     throw std::invalid_argument("a mirror west side must be a free-slip wall");
-  if (axisymmetric() && (settings_.west_mirror || settings_.preconditioner == Preconditioner::mobility))
-    throw std::invalid_argument("axisymmetric coupling: the markers are rings about the axis; no mirror half "
-                                "tank, and the mobility preconditioner (a planar table) is not available yet: "
-                                "use preconditioner none");
+  if (axisymmetric() && settings_.west_mirror)
+    throw std::invalid_argument("axisymmetric coupling: the west side is the axis, not a mirror half tank");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
   refresh_markers();
 }
@@ -429,7 +427,7 @@ CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
 
 void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMatrix<double>& stiffness) {
   const auto& x = body_.points.position;
-  if (!mobility_) mobility_ = std::make_unique<MobilityMatrix>(transfer_);
+  if (!mobility_ && !axisymmetric()) mobility_ = std::make_unique<MobilityMatrix>(transfer_);
   bool rebuild = mobility_points_.size() != x.size();
   if (!rebuild) {
     const fluid::MacGrid& g = transfer_.grid;
@@ -437,7 +435,15 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
     for (std::size_t p = 0; p < x.size() && !rebuild; ++p) rebuild = !(norm(x[p] - mobility_points_[p]) <= limit);
   }
   const bool symmetric = !mirror_partner_.empty();
-  if (rebuild) {
+  if (rebuild && axisymmetric()) {
+    // The planar table rests on translation invariance, which axisymmetric water lacks in r: R is
+    // built column by column from the fluid's own response (2N projections), target rows zeroed.
+    mobility_matrix_ = response_by_projections();
+    for (std::size_t p = 0; p < x.size(); ++p)
+      if (has_targets_ && is_target_[p]) mobility_matrix_.middleRows(2 * static_cast<Eigen::Index>(p), 2).setZero();
+    mobility_points_ = x;
+    ++mobility_builds_;
+  } else if (rebuild) {
     mobility_->assemble(x, is_target_, fluid_.settings().density_kg_per_m3, independent_, mobility_matrix_);
     mobility_points_ = x;
     ++mobility_builds_;

@@ -34,7 +34,8 @@ std::optional<Scheme> scheme_from_string(std::string_view name);
 /// How the semi-implicit scheme's GMRES is preconditioned.
 enum class Preconditioner {
   none,      ///< plain GMRES: one projection per iteration, tens of iterations on fine grids
-  mobility,  ///< the dense marker-space operator I − Δt² R K (mobility.hpp), LU-factored (right)
+  mobility,  ///< the dense marker-space operator I − Δt² R K (mobility.hpp), LU-factored (right);
+             ///< on axisymmetric water R is built by projections (response_by_projections)
 };
 std::string_view to_string(Preconditioner p);
 /// "none" or "mobility"; nullopt otherwise.
