@@ -97,26 +97,43 @@ double convection_v_limited(const Velocity& vel, const Boundaries& b, int i, int
   return convection_v(vel, i, j, 1.0);
 }
 
-double convection_u(const Velocity& vel, int i, int j, double gamma) {
+namespace {
+
+/// The γ-blended fluxes of u through the four sides of its control volume around x-face (i, j).
+struct SideFluxes {
+  double east, west, north, south;
+};
+SideFluxes u_side_fluxes(const Velocity& vel, int i, int j, double gamma) {
   const Field& u = vel.u;
   const Field& v = vel.v;
-  const MacGrid& g = u.grid();
-  const double east = blended_flux(0.5 * (u(i, j) + u(i + 1, j)), u(i, j), u(i + 1, j), gamma);
-  const double west = blended_flux(0.5 * (u(i - 1, j) + u(i, j)), u(i - 1, j), u(i, j), gamma);
-  const double north = blended_flux(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j), u(i, j + 1), gamma);
-  const double south = blended_flux(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 1), u(i, j), gamma);
-  return (east - west) / g.dx() + (north - south) / g.dy();
+  return {blended_flux(0.5 * (u(i, j) + u(i + 1, j)), u(i, j), u(i + 1, j), gamma),
+          blended_flux(0.5 * (u(i - 1, j) + u(i, j)), u(i - 1, j), u(i, j), gamma),
+          blended_flux(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j), u(i, j + 1), gamma),
+          blended_flux(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 1), u(i, j), gamma)};
+}
+
+/// The same for v around y-face (i, j).
+SideFluxes v_side_fluxes(const Velocity& vel, int i, int j, double gamma) {
+  const Field& u = vel.u;
+  const Field& v = vel.v;
+  return {blended_flux(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i, j), v(i + 1, j), gamma),
+          blended_flux(0.5 * (u(i, j - 1) + u(i, j)), v(i - 1, j), v(i, j), gamma),
+          blended_flux(0.5 * (v(i, j) + v(i, j + 1)), v(i, j), v(i, j + 1), gamma),
+          blended_flux(0.5 * (v(i, j - 1) + v(i, j)), v(i, j - 1), v(i, j), gamma)};
+}
+
+}  // namespace
+
+double convection_u(const Velocity& vel, int i, int j, double gamma) {
+  const MacGrid& g = vel.u.grid();
+  const SideFluxes f = u_side_fluxes(vel, i, j, gamma);
+  return (f.east - f.west) / g.dx() + (f.north - f.south) / g.dy();
 }
 
 double convection_v(const Velocity& vel, int i, int j, double gamma) {
-  const Field& u = vel.u;
-  const Field& v = vel.v;
-  const MacGrid& g = u.grid();
-  const double east = blended_flux(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i, j), v(i + 1, j), gamma);
-  const double west = blended_flux(0.5 * (u(i, j - 1) + u(i, j)), v(i - 1, j), v(i, j), gamma);
-  const double north = blended_flux(0.5 * (v(i, j) + v(i, j + 1)), v(i, j), v(i, j + 1), gamma);
-  const double south = blended_flux(0.5 * (v(i, j - 1) + v(i, j)), v(i, j - 1), v(i, j), gamma);
-  return (east - west) / g.dx() + (north - south) / g.dy();
+  const MacGrid& g = vel.u.grid();
+  const SideFluxes f = v_side_fluxes(vel, i, j, gamma);
+  return (f.east - f.west) / g.dx() + (f.north - f.south) / g.dy();
 }
 
 // ---- Axisymmetric flow without swirl (x = r from the axis, y = z; fluid_solver.hpp) ----
@@ -140,26 +157,16 @@ double axisymmetric_viscous_v(const Field& v, int i, int j) {
 
 double axisymmetric_convection_u(const Velocity& vel, int i, int j, double gamma) {
   // (1/r) ∂(r u²)/∂r + ∂(uv)/∂z (no swirl: no −u_θ²/r), the r-fluxes at the cell centres.
-  const Field& u = vel.u;
-  const Field& v = vel.v;
-  const MacGrid& g = u.grid();
-  const double east = blended_flux(0.5 * (u(i, j) + u(i + 1, j)), u(i, j), u(i + 1, j), gamma);
-  const double west = blended_flux(0.5 * (u(i - 1, j) + u(i, j)), u(i - 1, j), u(i, j), gamma);
-  const double north = blended_flux(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j), u(i, j + 1), gamma);
-  const double south = blended_flux(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 1), u(i, j), gamma);
-  return ((i + 0.5) * east - (i - 0.5) * west) / (i * g.dx()) + (north - south) / g.dy();
+  const MacGrid& g = vel.u.grid();
+  const SideFluxes f = u_side_fluxes(vel, i, j, gamma);
+  return ((i + 0.5) * f.east - (i - 0.5) * f.west) / (i * g.dx()) + (f.north - f.south) / g.dy();
 }
 
 double axisymmetric_convection_v(const Velocity& vel, int i, int j, double gamma) {
   // (1/r) ∂(r u v)/∂r + ∂(v²)/∂z, the r-fluxes through the faces at iΔr (zero on the axis) and (i + 1)Δr.
-  const Field& u = vel.u;
-  const Field& v = vel.v;
-  const MacGrid& g = u.grid();
-  const double east = blended_flux(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i, j), v(i + 1, j), gamma);
-  const double west = blended_flux(0.5 * (u(i, j - 1) + u(i, j)), v(i - 1, j), v(i, j), gamma);
-  const double north = blended_flux(0.5 * (v(i, j) + v(i, j + 1)), v(i, j), v(i, j + 1), gamma);
-  const double south = blended_flux(0.5 * (v(i, j - 1) + v(i, j)), v(i, j - 1), v(i, j), gamma);
-  return ((i + 1.0) * east - i * west) / ((i + 0.5) * g.dx()) + (north - south) / g.dy();
+  const MacGrid& g = vel.u.grid();
+  const SideFluxes f = v_side_fluxes(vel, i, j, gamma);
+  return ((i + 1.0) * f.east - i * f.west) / ((i + 0.5) * g.dx()) + (f.north - f.south) / g.dy();
 }
 
 EulerianSolver::EulerianSolver(const MacGrid& grid, const FluidSettings& settings)
