@@ -55,13 +55,15 @@ const char* const kPreamble =
     "#   type = \"circle\" (centre, radius), \"box\" (centre, size, angle_deg) or \"polygon\" (points =\n"
     "#   [x0, y0, x1, y1, ...] or file = \"outline.txt\"): a rigid obstacle held by stiff tethers\n"
     "#   (stiffness, N/m per marker), optionally moving: velocity = [vx, vy], amplitude = [ax, ay],\n"
-    "#   frequency (p(t) = p0 + v t + a sin 2πft).\n";
+    "#   frequency (p(t) = p0 + v t + a sin 2πft).\n"
+    "#   type = \"ib2d\" (files = \"path/stem\" or model = \"hoover-miller\", [[objects.schedules]]): a structure\n"
+    "#   in IB2d's terms, its springs' rest lengths or stiffnesses on a schedule (docs/ib2d.md).\n";
 
 ParameterTable make_jellyfish_scene() {
   std::vector<Parameter> p{
       {"scene", Type::text, "\"jellyfish\"", "", {}, {}, 0, "the scene kind"},
       number("duration", "14.285714285714286", "s", kPositive, "simulated time: 10 contraction cycles at 0.7 Hz"),
-      {"objects", Type::tables, "[]", "", {}, {}, 0, "more jellyfish and rigid obstacles, as [[objects]] tables (docs/scenes.md)"},
+      {"objects", Type::tables, "[]", "", {}, {}, 0, "more jellyfish, rigid obstacles and IB2d structures, as [[objects]] tables (docs/scenes.md)"},
 
       number("tank.width", "0.24", "m", kTankSize, "six bell diameters"),
       number("tank.height", "0.32", "m", kTankSize, "tank height"),
