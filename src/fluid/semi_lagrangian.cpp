@@ -1,5 +1,7 @@
 #include "jellysim/fluid/semi_lagrangian.hpp"
 
+#include "jellysim/fluid/eulerian_solver.hpp"
+
 #include "double2.hpp"
 
 #include <algorithm>
@@ -457,11 +459,90 @@ struct HelmholtzCoefficients {
 
 }  // namespace
 
-ImplicitDiffusion::ImplicitDiffusion(const MacGrid& g) : r_(g), d_(g) {}
+ImplicitDiffusion::ImplicitDiffusion(const MacGrid& g, Geometry geometry)
+    : geometry_(geometry), r_(g), d_(g), q_(geometry == Geometry::axisymmetric ? g : MacGrid(1, 1, 1.0, 1.0)) {}
+
+namespace {
+
+/// (I − νΔt L) x at face (i, j) of component c, L the axisymmetric viscous operator.
+double axisymmetric_helmholtz(const Velocity& x, int c, int i, int j, double nu_dt) {
+  return c == 0 ? x.u(i, j) - nu_dt * axisymmetric_viscous_u(x.u, i, j)
+                : x.v(i, j) - nu_dt * axisymmetric_viscous_v(x.v, i, j);
+}
+
+/// The volume weight of face (i, j) of component c: its radius (u_r faces at iΔr, u_z at (i + ½)Δr).
+double face_radius(const MacGrid& g, int c, int i) { return c == 0 ? i * g.dx() : (i + 0.5) * g.dx(); }
+
+}  // namespace
+
+int ImplicitDiffusion::solve_axisymmetric(Velocity& vel, const Boundaries& b, double nu_dt, double relative_tolerance,
+                                          int max_iterations) {
+  // CG on (I − νΔt L) e = r for the correction e, in the inner product Σ r_face x y (L is
+  // self-adjoint there; the −u_r/r² term is diagonal), plain loops: the ring form is young.
+  const MacGrid& g = vel.u.grid();
+  const Boundaries zero = b.homogeneous();
+  apply_velocity_boundaries(vel, b);
+  double vel_max = 0.0, r_max = 0.0, rr = 0.0;
+  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+    for (int i = i0; i < i1; ++i) {
+      const double u = component(vel, c)(i, j);
+      const double ri = u - axisymmetric_helmholtz(vel, c, i, j, nu_dt);
+      component(r_, c)(i, j) = ri;
+      component(d_, c)(i, j) = ri;
+      vel_max = std::max(vel_max, std::abs(u));
+      r_max = std::max(r_max, std::abs(ri));
+      rr += face_radius(g, c, i) * ri * ri;
+    }
+  });
+  const double target = relative_tolerance * std::max(vel_max, r_max);
+  int it = 0;
+  for (; it < max_iterations && r_max > target; ++it) {
+    apply_velocity_boundaries(d_, zero);
+    double dq = 0.0;
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        const double q = axisymmetric_helmholtz(d_, c, i, j, nu_dt);
+        component(q_, c)(i, j) = q;
+        dq += face_radius(g, c, i) * component(d_, c)(i, j) * q;
+      }
+    });
+    if (!(dq > 0.0)) break;
+    const double alpha = rr / dq;
+    double rr_new = 0.0;
+    r_max = 0.0;
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+      for (int i = i0; i < i1; ++i) {
+        component(vel, c)(i, j) += alpha * component(d_, c)(i, j);
+        const double ri = component(r_, c)(i, j) - alpha * component(q_, c)(i, j);
+        component(r_, c)(i, j) = ri;
+        rr_new += face_radius(g, c, i) * ri * ri;
+        r_max = std::max(r_max, std::abs(ri));
+      }
+    });
+    if (!(rr_new == rr_new)) break;
+    const double beta = rr_new / rr;
+    rr = rr_new;
+    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+      for (int i = i0; i < i1; ++i) component(d_, c)(i, j) = component(r_, c)(i, j) + beta * component(d_, c)(i, j);
+    });
+  }
+  apply_velocity_boundaries(vel, b);
+  return it;
+}
 
 void ImplicitDiffusion::apply_explicit(Velocity& vel, const Boundaries& b, double nu_dt_m2) {
   if (nu_dt_m2 <= 0.0) return;
   apply_velocity_boundaries(vel, b);
+  if (geometry_ == Geometry::axisymmetric) {  // u ← (I + νΔt L) u, L the axisymmetric operator
+    for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
+      for (int i = i0; i < i1; ++i) component(r_, c)(i, j) = axisymmetric_helmholtz(vel, c, i, j, -nu_dt_m2);
+    });
+    for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
+      for (int i = i0; i < i1; ++i) component(vel, c)(i, j) = component(r_, c)(i, j);
+    });
+    apply_velocity_boundaries(vel, b);
+    return;
+  }
   const HelmholtzCoefficients forward(vel.u.grid(), -nu_dt_m2);  // I + νΔt∇²
   for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
     const Field& f = component(vel, c);
@@ -481,6 +562,7 @@ int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2
   using simd::for_quads;
   using simd::max2;
   if (nu_dt_m2 <= 0.0) return 0;
+  if (geometry_ == Geometry::axisymmetric) return solve_axisymmetric(vel, b, nu_dt_m2, relative_tolerance, max_iterations);
   const MacGrid& g = vel.u.grid();
   const Boundaries zero = b.homogeneous();
   const HelmholtzCoefficients h(g, nu_dt_m2);

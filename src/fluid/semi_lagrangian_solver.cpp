@@ -10,10 +10,7 @@
 namespace jellysim::fluid {
 
 SemiLagrangianSolver::SemiLagrangianSolver(const MacGrid& grid, const FluidSettings& settings)
-    : FluidSolver(grid, settings), advected_(grid), diffusion_(grid), compensated_(grid) {
-  if (settings.geometry != Geometry::planar)
-    throw std::invalid_argument("the semi-Lagrangian solver is planar only so far; axisymmetric flow needs eulerian");
-}
+    : FluidSolver(grid, settings), advected_(grid), diffusion_(grid, settings.geometry), compensated_(grid) {}
 
 double SemiLagrangianSolver::stable_time_step() const { return std::numeric_limits<double>::infinity(); }
 

@@ -25,7 +25,8 @@ enum class TimeStepPolicy {
 struct FluidSettings {
   /// Planar flow, or axisymmetric flow without swirl (x = r from the axis, y = z): the grid's
   /// origin must then be on the axis (x = 0) and its west side free-slip (the symmetry condition
-  /// u_r = 0, ∂u_z/∂r = 0); the Eulerian solver with donor-cell (γ) convection only, so far.
+  /// u_r = 0, ∂u_z/∂r = 0); the Eulerian solver with donor-cell (γ) convection, or the
+  /// semi-Lagrangian solver with any advection scheme.
   Geometry geometry = Geometry::planar;
   double viscosity_m2_per_s = 1.0e-6;  ///< kinematic viscosity ν
   double density_kg_per_m3 = 1000.0;   ///< ρ: pressure p = ρφ (Pa)

@@ -2,6 +2,7 @@
 // Building blocks of Stam's semi-Lagrangian method (§4.2): back-traced advection and implicit
 // diffusion on the staggered grid.
 #include "jellysim/fluid/boundary.hpp"
+#include "jellysim/fluid/poisson.hpp"
 #include "jellysim/fluid/schemes.hpp"
 #include "jellysim/fluid/grid.hpp"
 
@@ -87,7 +88,10 @@ void advect_velocity_reference(const Velocity& src, const Boundaries& b, double 
 /// (the max is taken in the same pass that updates the residual).
 class ImplicitDiffusion {
  public:
-  explicit ImplicitDiffusion(const MacGrid& g);
+  /// On axisymmetric flow (fluid_solver.hpp) the operator is the axisymmetric one, (1/r)∂r(r∂u_r/∂r)
+  /// − u_r/r² + ∂²u_r/∂z² and (1/r)∂r(r∂u_z/∂r) + ∂²u_z/∂z², solved by conjugate gradients in the
+  /// volume-weighted inner product (in which it is symmetric).
+  explicit ImplicitDiffusion(const MacGrid& g, Geometry geometry = Geometry::planar);
   /// Returns the CG iterations.
   int solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
             int max_iterations = 2000);
@@ -96,7 +100,10 @@ class ImplicitDiffusion {
   void apply_explicit(Velocity& vel, const Boundaries& b, double nu_dt_m2);
 
  private:
-  Velocity r_, d_;
+  int solve_axisymmetric(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
+                         int max_iterations);
+  Geometry geometry_;
+  Velocity r_, d_, q_;
 };
 
 /// Implicit diffusion, eq. 4.17 with the time step: (I − νΔt∇²) u_new = u, solved by conjugate
