@@ -443,6 +443,15 @@ Ib2dStructure read_ib2d_structure(const std::filesystem::path& stem) {
   return s;
 }
 
+/// A beam's three points: vertex indices, distinct (the writer's side of read_beam_points).
+template <typename Beam>
+void check_beam_points(const StructureCheck& check, const Beam& b, const std::string& at) {
+  check.index(b.left, at + ".left");
+  check.index(b.middle, at + ".middle");
+  check.index(b.right, at + ".right");
+  check.distinct({b.left, b.middle, b.right}, at);
+}
+
 void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem::path& stem) {
   // Everything is checked and formatted first: a refused structure writes nothing.
   const StructureCheck check(stem, s.vertices.size());
@@ -457,10 +466,7 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
   for (std::size_t k = 0; k < s.beams.size(); ++k) {
     const Ib2dBeam& b = s.beams[k];
     const std::string at = item("beams", k);
-    check.index(b.left, at + ".left");
-    check.index(b.middle, at + ".middle");
-    check.index(b.right, at + ".right");
-    check.distinct({b.left, b.middle, b.right}, at);
+    check_beam_points(check, b, at);
     check.non_negative(b.stiffness, at + ".stiffness");
     check.finite(b.curvature, at + ".curvature");
   }
@@ -468,10 +474,7 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
   for (std::size_t k = 0; k < s.non_invariant_beams.size(); ++k) {
     const Ib2dNonInvariantBeam& b = s.non_invariant_beams[k];
     const std::string at = item("non_invariant_beams", k);
-    check.index(b.left, at + ".left");
-    check.index(b.middle, at + ".middle");
-    check.index(b.right, at + ".right");
-    check.distinct({b.left, b.middle, b.right}, at);
+    check_beam_points(check, b, at);
     check.non_negative(b.stiffness, at + ".stiffness");
     check.finite(b.curvature.x, at + ".curvature.x");
     check.finite(b.curvature.y, at + ".curvature.y");
