@@ -183,8 +183,24 @@ void ImmersedBoundary::build_symmetric_unknowns() {
 void ImmersedBoundary::spread(std::span<const Vec2> points, std::span<const Vec2> forces,
                               fluid::FaceAccelerations& acc) const {
   const double rho = fluid_.settings().density_kg_per_m3;
-  if (axisymmetric()) spread_forces_axisymmetric(points, forces, settings_.kernel, rho, acc, periodicity().y);
-  else spread_forces(points, forces, settings_.kernel, rho, acc, periodicity());
+  if (axisymmetric() && !mirror_partner_.empty()) {
+    // The body is the whole slice, both halves of every ring: its energy is twice the rings'. The
+    // force on a ring is half the force on its two points, i.e. that on its east point (the west
+    // one is its mirror image), and half the force on a point of the axis (its own image).
+    std::vector<Vec2> ring_points, ring_forces;
+    ring_points.reserve(independent_.size());
+    ring_forces.reserve(independent_.size());
+    for (int p : independent_) {
+      const auto k = static_cast<std::size_t>(p);
+      ring_points.push_back(points[k]);
+      ring_forces.push_back(mirror_partner_[k] == p ? 0.5 * forces[k] : forces[k]);
+    }
+    spread_forces_axisymmetric(ring_points, ring_forces, settings_.kernel, rho, acc, periodicity().y);
+  } else if (axisymmetric()) {
+    spread_forces_axisymmetric(points, forces, settings_.kernel, rho, acc, periodicity().y);
+  } else {
+    spread_forces(points, forces, settings_.kernel, rho, acc, periodicity());
+  }
 }
 
 void ImmersedBoundary::interpolate_at_markers(const fluid::Velocity& vel, std::vector<Vec2>& out) const {
@@ -307,6 +323,18 @@ void ImmersedBoundary::apply_response(const Eigen::VectorXd& forces, Eigen::Vect
 
 Eigen::MatrixXd ImmersedBoundary::response_by_projections() {
   const auto n = 2 * static_cast<Eigen::Index>(body_.points.size());
+  if (!mirror_partner_.empty()) {
+    // On the symmetric unknowns: column k is the picked velocity for the symmetric force Q e_k.
+    const Eigen::Index d = symmetric_basis_.cols();
+    Eigen::MatrixXd r(d, d);
+    Eigen::VectorXd force, column;
+    for (Eigen::Index k = 0; k < d; ++k) {
+      force = symmetric_basis_.col(k);
+      apply_response(force, column);
+      r.col(k) = pick_ * column;
+    }
+    return r;
+  }
   Eigen::MatrixXd r(n, n);
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(n), column;
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -438,9 +466,13 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
   if (rebuild && axisymmetric()) {
     // The planar table rests on translation invariance, which axisymmetric water lacks in r: R is
     // built column by column from the fluid's own response (2N projections), target rows zeroed.
-    mobility_matrix_ = response_by_projections();
-    for (std::size_t p = 0; p < x.size(); ++p)
-      if (has_targets_ && is_target_[p]) mobility_matrix_.middleRows(2 * static_cast<Eigen::Index>(p), 2).setZero();
+    // With the mirror symmetry (an axisymmetric scene always has it) R is built on the symmetric
+    // unknowns directly: about N projections. Target rows are zero (apply_response masks them).
+    if (symmetric) {
+      reduced_mobility_ = response_by_projections();
+    } else {
+      mobility_matrix_ = response_by_projections();
+    }
     mobility_points_ = x;
     ++mobility_builds_;
   } else if (rebuild) {

@@ -24,7 +24,14 @@ World::World(const TankSpec& tank, std::unique_ptr<elastic::Body> body, const Co
   if (!mirror_partner_.empty() && mirror_partner_.size() != body_->points.size())
     throw std::invalid_argument("the mirror partners must name one point per point of the body");
   mirror_active_ = !mirror_partner_.empty();
-  half_tank_ = mirror_active_ && tank_.half_tank && tank_.cells_x % 2 == 0;
+  if (axisymmetric()) {
+    if (!mirror_active_)
+      throw std::invalid_argument("an axisymmetric tank needs a scene that is its own mirror image about the axis "
+                                  "(the centre line x = width/2): the slice of a body of revolution");
+    if (tank_.cells_x % 2 != 0)
+      throw std::invalid_argument("an axisymmetric tank needs an even number of cells across (the axis is a cell face)");
+  }
+  half_tank_ = mirror_active_ && (tank_.half_tank || axisymmetric()) && tank_.cells_x % 2 == 0;
   fluid_ = make_fluid(half_tank_);
   coupling_ = make_coupling(half_tank_);
   if (tank_.tracers_per_side > 0) {
@@ -49,6 +56,7 @@ std::unique_ptr<fluid::FluidSolver> World::make_fluid(bool east_half) const {
     fs.boundaries.west = {fluid::BoundaryType::free_slip, {}};
     if (tank_.boundaries.periodic_x()) fs.boundaries.east = {fluid::BoundaryType::free_slip, {}};
   }
+  if (east_half) fs.geometry = tank_.geometry;  // the axis is the half tank's west side
   fs.convection = tank_.convection;
   fs.advection = tank_.advection;
   fs.pressure_solver = tank_.pressure_solver;
@@ -66,7 +74,7 @@ std::unique_ptr<fluid::FluidSolver> World::make_fluid(bool east_half) const {
 
 std::unique_ptr<ImmersedBoundary> World::make_coupling(bool east_half) {
   CouplingSettings c = coupling_settings_;
-  c.west_mirror = east_half;
+  c.west_mirror = east_half && !axisymmetric();  // rings fold across the axis by themselves
   auto coupling = std::make_unique<ImmersedBoundary>(*fluid_, *body_, c, actuate_);
   if (mirror_active_) coupling->set_mirror_symmetry(mirror_partner_);
   return coupling;
@@ -108,6 +116,9 @@ void World::leave_half_tank() {
 
 void World::end_mirror_symmetry() {
   if (!mirror_active_) return;
+  if (axisymmetric())
+    throw std::invalid_argument("an axisymmetric tank is symmetric about its axis by construction: this edit would "
+                                "break the symmetry (use tank.geometry = \"planar\")");
   mirror_active_ = false;
   leave_half_tank();
   coupling_->set_mirror_symmetry({});

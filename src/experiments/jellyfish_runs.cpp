@@ -118,7 +118,9 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
     const jellyfish::Jellyfish& jelly = sim.jellyfish(j);
     const elastic::Body& b = jelly.body();
     const auto& muscles = jelly.layout().muscle_springs;
+    const auto& hoops = jelly.layout().hoop_springs;  // a ring jellyfish's: not drawn (they close each ring)
     for (std::size_t s = jelly.first_linear_spring(); s < jelly.first_linear_spring() + jelly.linear_spring_count(); ++s) {
+      if (std::find(hoops.begin(), hoops.end(), static_cast<int>(s)) != hoops.end()) continue;
       const std::array<Vec2, 2> seg{b.points.position[static_cast<std::size_t>(b.linear.i[s])],
                                     b.points.position[static_cast<std::size_t>(b.linear.j[s])]};
       const bool muscle = std::find(muscles.begin(), muscles.end(), static_cast<int>(s)) != muscles.end();

@@ -18,8 +18,6 @@ FluidSolver::FluidSolver(const MacGrid& grid, const FluidSettings& settings)
       projector_(make_pressure_solver(settings.pressure_solver, settings.pressure), settings.geometry) {
   settings_.boundaries.validate();
   if (settings_.geometry == Geometry::axisymmetric) {
-    if (grid.origin_m.x != 0.0)
-      throw std::invalid_argument("axisymmetric flow: the grid must start on the axis (origin x = 0)");
     if (settings_.boundaries.west.type != BoundaryType::free_slip)
       throw std::invalid_argument("axisymmetric flow: the west side is the axis and must be free-slip (symmetry)");
     if (settings_.pressure_solver == "multigrid")

@@ -64,6 +64,40 @@ std::vector<Vec2> bell_profile(double diameter_m, double height_m, int segments_
   return points;
 }
 
+std::vector<int> make_rings(elastic::Body& body, double axis_x, double spacing, const std::vector<int>& partner,
+                            const std::vector<std::vector<int>>& hoop_rows, const std::vector<int>& muscles,
+                            double membrane_stiffness_n_per_m) {
+  const auto& x = body.points.position;
+  const double smallest_radius = 0.25 * spacing;  // mean radius of the material within half a spacing of the axis
+  auto radius = [&](int p) { return std::abs(x[static_cast<std::size_t>(p)].x - axis_x); };
+  std::vector<char> is_muscle(body.linear.size(), 0);
+  for (int m : muscles) is_muscle[static_cast<std::size_t>(m)] = 1;
+  for (std::size_t k = 0; k < body.linear.size(); ++k) {
+    const double r = 0.5 * (radius(body.linear.i[k]) + radius(body.linear.j[k]));
+    body.linear.stiffness[k] *= 2.0 * std::numbers::pi * (is_muscle[k] ? 1.0 : std::max(r, smallest_radius));
+  }
+  for (std::size_t a = 0; a < body.angular.size(); ++a) {
+    const double r = (radius(body.angular.i[a]) + radius(body.angular.j[a]) + radius(body.angular.k[a])) / 3.0;
+    body.angular.stiffness[a] *= 2.0 * std::numbers::pi * std::max(r, smallest_radius);
+  }
+  // Hoop springs: a ring of rest radius r₀ and meridional width s has hoop stiffness C s / (2π r₀);
+  // its radial pull 2π T = 2π C s (r − r₀)/r₀ is that of a spring of constant π C s / r₀ across the
+  // axis, whose length is 2r (rest length 2r₀).
+  std::vector<int> hoops;
+  for (const std::vector<int>& row : hoop_rows)
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const int p = row[k], q = partner[static_cast<std::size_t>(p)];
+      const double r0 = radius(p);
+      if (q == p || x[static_cast<std::size_t>(p)].x < axis_x || r0 < 1e-12 * spacing) continue;
+      double s = 0.0;
+      if (k > 0) s += 0.5 * norm(x[static_cast<std::size_t>(p)] - x[static_cast<std::size_t>(row[k - 1])]);
+      if (k + 1 < row.size()) s += 0.5 * norm(x[static_cast<std::size_t>(row[k + 1])] - x[static_cast<std::size_t>(p)]);
+      body.add_linear_spring(p, q, std::numbers::pi * membrane_stiffness_n_per_m * s / r0, 2.0 * r0);
+      hoops.push_back(static_cast<int>(body.linear.size()) - 1);
+    }
+  return hoops;
+}
+
 bool polyline_self_intersects(const std::vector<Vec2>& p) {
   auto crosses = [](Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
@@ -95,6 +129,9 @@ void validate(const JellyfishSpec& s) {
           "[1, 10]");
   require(s.neural_delay_s >= 0, "neural_delay", "[0, inf) s");
   require(s.profile.trochoid_skew >= 0 && s.profile.trochoid_skew < 1, "trochoid_skew", "[0, 1)");
+  if (s.rings && std::abs(std::sin(s.tilt_rad)) > 1e-12)
+    throw std::invalid_argument("field 'jellyfish.tilt_deg': a ring jellyfish (axisymmetric tank) swims along the "
+                                "axis: the tilt must be 0 or 180 degrees");
 }
 
 Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
@@ -186,6 +223,26 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
       add_joint(strand[k - 1], strand[k], strand[k + 1], kt, t_spacing, s.tentacle_bending_factor);
     layout_.tentacles.push_back(strand);
   }
+  if (s.rings) {
+    // Mirror images: umbrella k ↔ n − 1 − k (same for the mesh's outer row), left tentacle ↔ right.
+    std::vector<int> partner(own_body_.points.size());
+    for (std::size_t p = 0; p < partner.size(); ++p) partner[p] = static_cast<int>(p);
+    auto pair_rows = [&partner](const std::vector<int>& row) {
+      for (std::size_t k = 0; k < row.size(); ++k) partner[static_cast<std::size_t>(row[k])] = row[row.size() - 1 - k];
+    };
+    pair_rows(u);
+    pair_rows(layout_.exumbrella);
+    if (layout_.tentacles.size() == 2)
+      for (std::size_t k = 1; k < layout_.tentacles[0].size(); ++k) {
+        partner[static_cast<std::size_t>(layout_.tentacles[0][k])] = layout_.tentacles[1][k];
+        partner[static_cast<std::size_t>(layout_.tentacles[1][k])] = layout_.tentacles[0][k];
+      }
+    std::vector<std::vector<int>> rows{u};
+    if (!layout_.exumbrella.empty()) rows.push_back(layout_.exumbrella);
+    // C = κ_l l_r of the umbrella springs: λ A (eq. 7.1), per metre of the ring's circumference.
+    layout_.hoop_springs = make_rings(own_body_, s.aperture_centre_m.x, spacing, partner, rows,
+                                      layout_.muscle_springs, s.bell_modulus_pa * area_bell);
+  }
   base_stiffness_ = own_body_.linear.stiffness;
   base_joint_stiffness_ = own_body_.angular.stiffness;
   base_rest_angle_ = own_body_.angular.rest_angle;
@@ -223,6 +280,7 @@ void Jellyfish::move_into(elastic::Body& shared) {
   shift(layout_.exumbrella, first_point_);
   for (std::vector<int>& strand : layout_.tentacles) shift(strand, first_point_);
   shift(layout_.muscle_springs, first_linear_);
+  shift(layout_.hoop_springs, first_linear_);
   body_ = &shared;
   own_body_ = elastic::Body{};
 }

@@ -106,7 +106,34 @@ const JellyfishSpec& SwimSettings::jellyfish() const {
   return school.front();
 }
 
+void validate_geometry(const SwimSettings& settings) {
+  const coupling::TankSpec& t = settings.tank;
+  if (t.geometry != fluid::Geometry::axisymmetric) return;
+  auto refuse = [](const std::string& why) {
+    throw std::invalid_argument("tank.geometry = \"axisymmetric\": " + why);
+  };
+  if (t.symmetry == coupling::MirrorSymmetry::none)
+    refuse("the slice is kept mirror-symmetric about the axis; tank.symmetry = \"none\" contradicts it");
+  if (t.cells_x % 2 != 0) refuse("the axis is the centre line, a cell face: tank.cells[0] must be even");
+  if (t.boundaries.periodic_x()) refuse("the radial direction cannot be periodic (tank.boundaries west/east)");
+  if (t.pressure_solver == "multigrid") refuse("the multigrid pressure solver is planar only (use fft, direct or sor)");
+  if (t.solver == "eulerian" && t.convection != fluid::ConvectionScheme::donor_cell)
+    refuse("the Eulerian solver has only the donor-cell (γ blend) convection in this geometry (tank.convection)");
+  const double axis = 0.5 * t.width_m;
+  for (std::size_t k = 0; k < settings.school.size(); ++k) {
+    const JellyfishSpec& j = settings.school[k];
+    if (std::abs(j.aperture_centre_m.x - axis) > 1e-9 * t.width_m)
+      refuse("jellyfish " + std::to_string(k + 1) + " is a body of revolution about the axis: its position x = " +
+             std::to_string(j.aperture_centre_m.x) + " m must be the tank's centre line, " + std::to_string(axis) + " m");
+  }
+  if (!settings.obstacles.empty())
+    refuse("obstacles are planar (forces per metre of depth) and not supported in axisymmetric tanks yet");
+  if (!settings.structures.empty())
+    refuse("IB2d structures are planar and not supported in axisymmetric tanks");
+}
+
 void validate_layout(const SwimSettings& settings) {
+  validate_geometry(settings);
   const coupling::TankSpec& t = settings.tank;
   struct Shape {
     std::string name;
@@ -145,6 +172,9 @@ void validate_layout(const SwimSettings& settings) {
 }
 
 SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(settings) {
+  validate_geometry(settings_);
+  // In axisymmetric water every jellyfish is a body of revolution about the tank's axis.
+  for (JellyfishSpec& spec : settings_.school) spec.rings = settings_.tank.geometry == fluid::Geometry::axisymmetric;
   auto body = std::make_unique<elastic::Body>();
   for (const JellyfishSpec& spec : settings_.school) {
     school_.push_back(std::make_unique<Jellyfish>(spec));
@@ -182,6 +212,9 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
       if (settings_.tank.symmetry == coupling::MirrorSymmetry::mirror)
         throw std::invalid_argument("tank.symmetry = \"mirror\" needs a scene that is its own mirror image: " +
                                     problem);
+      if (settings_.tank.geometry == fluid::Geometry::axisymmetric)
+        throw std::invalid_argument("tank.geometry = \"axisymmetric\" needs a scene that is its own mirror image "
+                                    "about the axis: " + problem);
       mirror_note_ = "the scene is not its own mirror image: " + problem;
       mirror_partners.clear();
     }
@@ -364,6 +397,8 @@ void SwimSimulation::set_stiffness_scale(std::size_t j, double scale) {
   edit_of_jellyfish(j, "a stiffness change");
 }
 void SwimSimulation::set_steer_target(std::size_t j, std::optional<Vec2> target_m) {
+  if (target_m && world_->axisymmetric())
+    throw std::invalid_argument("a ring jellyfish in an axisymmetric tank swims along the axis: it cannot steer");
   school_.at(j)->set_steer_target(target_m);
   if (target_m) end_mirror_symmetry("jellyfish " + std::to_string(j + 1) + " began to steer");
 }
@@ -371,11 +406,19 @@ void SwimSimulation::set_viscosity(double nu_m2_per_s) { world_->set_viscosity(n
 
 void SwimSimulation::stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_m) {
   if (!(radius_m > 0)) throw std::invalid_argument("stir radius must be > 0");
+  if (world_->axisymmetric()) {
+    // A stir of axisymmetric water is a ring about the axis: its meridian east of the axis.
+    const double axis = 0.5 * settings_.tank.width_m;
+    if (at_m.x < axis) at_m.x = 2.0 * axis - at_m.x, delta_velocity_m_per_s.x = -delta_velocity_m_per_s.x;
+    world_->stir(at_m, delta_velocity_m_per_s, radius_m);
+    return;
+  }
   end_mirror_symmetry("the fluid was stirred");
   world_->stir(at_m, delta_velocity_m_per_s, radius_m);
 }
 
 void SwimSimulation::move_jellyfish(std::size_t j, Vec2 delta_m) {
+  if (world_->axisymmetric()) delta_m.x = 0.0;  // a ring jellyfish stays on the axis
   if (delta_m.x != 0.0 || jellyfish_mirror_.empty() || jellyfish_mirror_.at(j) != static_cast<int>(j))
     end_mirror_symmetry("jellyfish " + std::to_string(j + 1) + " was moved");
   Jellyfish& jellyfish = *school_.at(j);

@@ -90,6 +90,9 @@ ParameterTable make_jellyfish_scene() {
       choice("tank.symmetry", "auto", {"auto", "mirror", "none"},
              "auto: keep the mirror symmetry of a scene that is its own mirror image about the centre line "
              "(docs/jellyfish.md); mirror: insist; none"),
+      choice("tank.geometry", "planar", {"planar", "axisymmetric"},
+             "planar: the slice is a plane section (the thesis); axisymmetric: the slice is the meridian of a body "
+             "of revolution about the centre line, the water 3D around it (docs/jellyfish.md)"),
       boolean("tank.half_tank", "true",
               "while the symmetry is kept, solve only the east half (a symmetry plane on the centre line)"),
 
@@ -497,6 +500,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.current_m_per_s = r.vec2("tank.current");
   const std::string symmetry = r.choice("tank.symmetry");
   t.half_tank = r.boolean("tank.half_tank");
+  t.geometry = r.choice("tank.geometry") == "axisymmetric" ? fluid::Geometry::axisymmetric : fluid::Geometry::planar;
   t.symmetry = symmetry == "auto"     ? coupling::MirrorSymmetry::automatic
                : symmetry == "mirror" ? coupling::MirrorSymmetry::mirror
                                       : coupling::MirrorSymmetry::none;

@@ -53,10 +53,13 @@ void draw_body_springs(const PanelMapping& map, const jellyfish::Jellyfish& j, I
   const auto& pos = body.points.position;
   std::vector<bool> is_muscle(body.linear.size(), false);
   for (int s : j.layout().muscle_springs) is_muscle[static_cast<std::size_t>(s)] = true;
+  std::vector<bool> is_hoop(body.linear.size(), false);  // a ring jellyfish's hoops close each ring: not drawn
+  for (int s : j.layout().hoop_springs) is_hoop[static_cast<std::size_t>(s)] = true;
   const ImU32 spring = selected ? IM_COL32(255, 255, 255, 255) : IM_COL32(230, 235, 240, 230);
   const ImU32 muscle = IM_COL32(255, 70, 60, 200);
   const std::size_t first = j.first_linear_spring();
   for (std::size_t s = first; s < first + j.linear_spring_count(); ++s) {
+    if (is_hoop[s]) continue;
     const Vec2 a = pos[static_cast<std::size_t>(body.linear.i[s])];
     const Vec2 b = pos[static_cast<std::size_t>(body.linear.j[s])];
     list->AddLine(im(map.to_screen(a)), im(map.to_screen(b)), is_muscle[s] ? muscle : spring,
@@ -137,7 +140,8 @@ bool ScenePanel::interact(const PanelMapping& map, const MouseState& mouse, bool
     grab_.last_m = at_m;
     if (!mouse.down[0]) grab_.kind = Grab::Kind::none;
   }
-  if (mouse.down[1] && !was_down_[1] && over && selected_ < sim.jellyfish_count()) {
+  // A ring jellyfish (axisymmetric tank) swims along the axis: it has no steering.
+  if (mouse.down[1] && !was_down_[1] && over && selected_ < sim.jellyfish_count() && !sim.world().axisymmetric()) {
     params.jellyfish[selected_].steer_target_m = at_m;
     sim.set_steer_target(selected_, at_m);
     changed = true;

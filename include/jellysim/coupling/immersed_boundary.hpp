@@ -91,6 +91,7 @@ class ImmersedBoundary {
   const elastic::Body& body() const { return body_; }
   /// R = J P S / ρ built column by column, one spread-project-interpolate per unknown (2N
   /// projections, any pressure solver): the reference the mobility matrix is tested against.
+  /// With the mirror symmetry, R on the symmetric unknowns (pick R Q: one projection per unknown).
   Eigen::MatrixXd response_by_projections();
   /// How often the mobility preconditioner's R was built (for benchmarks).
   long mobility_builds() const { return mobility_builds_; }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jellysim/coupling/immersed_boundary.hpp"
+#include "jellysim/fluid/poisson.hpp"
 #include "jellysim/fluid/schemes.hpp"
 #include "jellysim/fluid/tracers.hpp"
 
@@ -44,6 +45,11 @@ struct TankSpec {
   /// While the mirror symmetry is kept, solve only the east half of the tank, with a symmetry
   /// plane (a free-slip wall) on the centre line: half the fluid. Needs an even cells_x.
   bool half_tank = true;
+  /// planar: the slice is a plane section of an infinitely deep body (the thesis); axisymmetric:
+  /// the tank is the (r, z) half plane of a cylinder whose axis is the centre line x = width/2,
+  /// every marker a ring about it (fluid::Geometry). Axisymmetric tanks solve the east half and
+  /// need a scene that is its own mirror image (the slice of a body of revolution).
+  fluid::Geometry geometry = fluid::Geometry::planar;
 };
 
 /// The largest marker spacing Peskin's rule allows on a tank: half the smaller cell size.
@@ -82,7 +88,9 @@ class World {
   /// Per point of body(), its mirror image (empty when no symmetry was kept from the start).
   const std::vector<int>& mirror_partners() const { return mirror_partner_; }
   /// Stops keeping the mirror symmetry (a live edit broke it) and continues on the whole tank.
+  /// An axisymmetric tank keeps it always: throws std::invalid_argument.
   void end_mirror_symmetry();
+  bool axisymmetric() const { return tank_.geometry == fluid::Geometry::axisymmetric; }
 
   // ---- Live edits ----
   void set_viscosity(double nu_m2_per_s) { fluid_->set_viscosity(nu_m2_per_s); }

@@ -59,6 +59,12 @@ struct JellyfishSpec {
   double steer_damping_cycles = 1.5;      ///< derivative time: heading change per cycle is weighed by this
 
   int noise_seed = 1;                     ///< the individual's noise seed for rendering (§7.3)
+
+  /// The slice of a body of revolution about its own axis (axisymmetric water, coupling::TankSpec::
+  /// geometry): every point is a ring and every force the whole ring's (N, not N per metre of
+  /// depth). Meridional springs and joints carry their ring's circumference, the umbrella gets hoop
+  /// springs, the muscles become ring (coronal) muscles; see make_rings and docs/jellyfish.md.
+  bool rings = false;
 };
 
 /// Indices into the body of the parts of the slice.
@@ -70,6 +76,7 @@ struct JellyfishLayout {
   std::vector<double> muscle_uncontracted_m;
   std::vector<ContractionProfile> muscle_profiles;
   std::vector<double> muscle_delay_s;
+  std::vector<int> hoop_springs;           ///< ring jellyfish only: hoop springs across the axis (make_rings)
   int apex = 0;                            ///< index into umbrella (the middle)
 };
 
@@ -152,6 +159,23 @@ void validate(const JellyfishSpec& spec);
 /// Points along the half-ellipse subumbrellar profile (aperture tips at ±D/2, apex at height H),
 /// evenly spaced in arc length, left tip first; before tilt and translation.
 std::vector<Vec2> bell_profile(double diameter_m, double height_m, int segments_per_side);
+
+/// Turns a built planar slice (forces per metre of depth) into rings about the vertical line
+/// x = axis_x (forces of whole rings, N). With r̄ an element's mean distance from the axis (at
+/// least a quarter of `spacing`, for elements on the axis):
+///  * springs and joints along the bell and tentacles carry 2π r̄ times their planar force (a ring
+///    element of circumference 2π r̄; the tentacles a curtain of strands around the margin);
+///  * springs across the axis (the muscles) join the two points of one ring: their planar tension
+///    becomes the ring's hoop tension, whose radial pull on the ring totals 2π times it;
+///  * every off-axis point of `hoop_rows` (the umbrella rows) gets a hoop spring across the axis to
+///    its mirror image: the bell's resistance to a change of circumference, radial force
+///    2π C s (r − r₀)/r₀ with C = κ_l l_r the membrane stiffness the row's springs have and s the
+///    meridional length the point stands for.
+/// `partner` gives each point's mirror image; `muscles` the springs across the axis. Returns the
+/// hoop springs' indices.
+std::vector<int> make_rings(elastic::Body& body, double axis_x, double spacing, const std::vector<int>& partner,
+                            const std::vector<std::vector<int>>& hoop_rows, const std::vector<int>& muscles,
+                            double membrane_stiffness_n_per_m);
 
 /// True when two non-adjacent segments of the polyline cross (the umbrella turned inside out).
 bool polyline_self_intersects(const std::vector<Vec2>& points);

@@ -143,7 +143,12 @@ class SwimSimulation {
   std::vector<int> jellyfish_mirror_;  ///< per jellyfish, the one that is its mirror image
 };
 
-/// Checks that bodies lie inside the tank and do not overlap one another; throws
+/// Checks what an axisymmetric tank needs (coupling::TankSpec::geometry): jellyfish on the axis, no
+/// planar obstacles, an even cell count, settings the axisymmetric solvers have; throws
+/// std::invalid_argument saying which. Nothing for planar tanks.
+void validate_geometry(const SwimSettings& settings);
+
+/// Checks that bodies lie inside the tank and do not overlap one another (and validate_geometry); throws
 /// std::invalid_argument naming the bodies ("jellyfish 2", "objects[1] (circle)").
 void validate_layout(const SwimSettings& settings);
 
