@@ -464,14 +464,29 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
   }
   const bool symmetric = !mirror_partner_.empty();
   if (rebuild && axisymmetric()) {
-    // The planar table rests on translation invariance, which axisymmetric water lacks in r: R is
-    // built column by column from the fluid's own response (2N projections), target rows zeroed.
-    // With the mirror symmetry (an axisymmetric scene always has it) R is built on the symmetric
-    // unknowns directly: about N projections. Target rows are zero (apply_response masks them).
+    // Rings: the table of AxisymmetricMobility (translation invariant along z only). With the
+    // mirror symmetry (an axisymmetric scene always has it) only the rings are unknowns: the east
+    // points and those on the axis, which spread half the force on them (spread()).
+    if (!ring_mobility_) ring_mobility_ = std::make_unique<AxisymmetricMobility>(transfer_);
+    const double rho = fluid_.settings().density_kg_per_m3;
     if (symmetric) {
-      reduced_mobility_ = response_by_projections();
+      std::vector<Vec2> rings;
+      std::vector<char> masked;
+      std::vector<double> scale;
+      for (int p : independent_) {
+        const auto k = static_cast<std::size_t>(p);
+        rings.push_back(x[k]);
+        masked.push_back(has_targets_ ? is_target_[k] : 0);
+        scale.push_back(mirror_partner_[k] == p ? 0.5 : 1.0);
+      }
+      Eigen::MatrixXd r;
+      ring_mobility_->assemble(rings, masked, scale, rho, r);
+      const auto d = static_cast<Eigen::Index>(picked_rows_.size());
+      reduced_mobility_.resize(d, d);
+      for (Eigen::Index a = 0; a < d; ++a)
+        for (Eigen::Index b = 0; b < d; ++b) reduced_mobility_(a, b) = r(picked_rows_[static_cast<std::size_t>(a)], picked_rows_[static_cast<std::size_t>(b)]);
     } else {
-      mobility_matrix_ = response_by_projections();
+      ring_mobility_->assemble(x, is_target_, {}, rho, mobility_matrix_);
     }
     mobility_points_ = x;
     ++mobility_builds_;

@@ -1,6 +1,7 @@
 #include "jellysim/coupling/mobility.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "jellysim/fluid/poisson.hpp"
@@ -458,6 +459,223 @@ void MobilityMatrix::assemble(std::span<const Vec2> points, std::span<const char
                                                     transfer[2 * b + static_cast<std::size_t>(c_from)], c_from);
     }
   }
+}
+
+}  // namespace jellysim::coupling
+
+// ---- Axisymmetric water ----
+
+namespace jellysim::coupling {
+
+namespace {
+
+/// Along r: sample i of a stencil folded across the axis (a normal sample −i is face i with sign
+/// −1, a cell-centred one −1 − i is cell i), then the ghost rules at the outer side.
+Axis radial_axis(const TransferGeometry& g) { return {g.grid.nx, BoundaryType::free_slip, g.sides.east.type, true}; }
+
+/// A run of kernel weights along r folded onto real samples: at most four distinct ones.
+struct RadialTerms {
+  int i[4];
+  double w[4];
+  int count = 0;
+  void add(int index, double weight) {
+    for (int k = 0; k < count; ++k)
+      if (i[k] == index) {
+        w[k] += weight;
+        return;
+      }
+    i[count] = index;
+    w[count] = weight;
+    ++count;
+  }
+};
+
+}  // namespace
+
+struct AxisymmetricMobility::Transfer {
+  struct Term {
+    int i, j;
+    double w;
+  };
+  std::vector<Term> read;     ///< faces interpolation reads (folded, ghosts mapped)
+  std::vector<Term> sources;  ///< spread faces' z-images on the torus, weight × sign / (2π r Δr Δz)
+  /// Along z the stencil is a run of interior samples (away from the south and north sides): an
+  /// entry is then Σ over radial pairs of a correlation of the z weights with a table row.
+  bool separable = false;
+  int width = 0, j0 = 0;
+  double wz[4] = {0, 0, 0, 0};
+  RadialTerms read_r, source_r;  ///< radial weights (sources: divided by the face's radius and 2π Δr Δz)
+  ImageRun z_images[4];
+  int z_image_count = 0;
+};
+
+AxisymmetricMobility::AxisymmetricMobility(const TransferGeometry& geometry) : geometry_(geometry) {
+  if (geometry_.west_mirror) throw std::invalid_argument("axisymmetric mobility: the axis is not a mirror half tank");
+  if (geometry_.sides.east.type == BoundaryType::periodic)
+    throw std::invalid_argument("axisymmetric mobility: the radial direction cannot be periodic");
+  const Axis az = y_axis(geometry_);
+  if (az.periodic() != (az.high == BoundaryType::periodic))
+    throw std::invalid_argument("mobility: a periodic side needs a periodic opposite side");
+  period_z_ = torus_period(az);
+  columns_.resize(2 * static_cast<std::size_t>(geometry_.grid.nx + 1));
+}
+
+AxisymmetricMobility::~AxisymmetricMobility() = default;
+
+const std::vector<double>& AxisymmetricMobility::column(int c_from, int i_from) const {
+  std::vector<double>& table = columns_[2 * static_cast<std::size_t>(i_from) + static_cast<std::size_t>(c_from)];
+  if (!table.empty()) return table;
+  // The response on the z-torus (the real sides in r) to a unit value on face (i_from, 0).
+  const fluid::MacGrid& g = geometry_.grid;
+  const fluid::MacGrid torus(g.nx, period_z_, g.width_m, period_z_ * g.dy(), g.origin_m);
+  fluid::Boundaries sides = fluid::Boundaries::all(BoundaryType::periodic);
+  sides.west = {BoundaryType::free_slip, {}};
+  sides.east = {geometry_.sides.east.type, {}};
+  fluid::Projector projector(fluid::make_pressure_solver("fft"), fluid::Geometry::axisymmetric);
+  fluid::FlowState state(torus);
+  (c_from == 0 ? state.velocity.u : state.velocity.v)(i_from, 0) = 1.0;
+  fluid::apply_velocity_boundaries(state.velocity, sides);
+  projector.project(state, sides, 1.0, 1.0);
+  const auto rows = static_cast<std::size_t>(g.nx + 1), pz = static_cast<std::size_t>(period_z_);
+  table.assign(2 * rows * pz, 0.0);
+  for (int to = 0; to < 2; ++to) {
+    const fluid::Field& f = to == 0 ? state.velocity.u : state.velocity.v;
+    const int count = to == 0 ? g.nx + 1 : g.nx;
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < period_z_; ++j)
+        table[(static_cast<std::size_t>(to) * rows + static_cast<std::size_t>(i)) * pz + static_cast<std::size_t>(j)] = f(i, j);
+  }
+  ++columns_built_;
+  return table;
+}
+
+void AxisymmetricMobility::prepare(Vec2 p, int component, Transfer& t) const {
+  const fluid::MacGrid& g = geometry_.grid;
+  const Axis ar = radial_axis(geometry_), az = y_axis(geometry_);
+  const bool normal_r = component == 0, normal_z = component == 1;
+  const Vec2 f = sample_coordinates(g, p, component);
+  const AxisWeights wr = axis_weights(geometry_.kernel, f.x), wz = axis_weights(geometry_.kernel, f.y);
+  t.read.clear();
+  t.sources.clear();
+  t.read_r.count = t.source_r.count = 0;
+  // Reading: the folded stencil with the ghost rules (interpolate_velocities_axisymmetric).
+  for (int a = 0; a < wr.width; ++a) {
+    int i;
+    double fi;
+    if (wr.w[a] == 0.0 || !real_sample(ar, normal_r, wr.first + a, i, fi)) continue;
+    t.read_r.add(i, wr.w[a] * fi);
+    for (int b = 0; b < wz.width; ++b) {
+      int j;
+      double fj;
+      if (wz.w[b] == 0.0 || !real_sample(az, normal_z, wz.first + b, j, fj)) continue;
+      t.read.push_back({i, j, wr.w[a] * fi * wz.w[b] * fj});
+    }
+  }
+  // Spreading: folded across the axis, interior faces only, a ring's force over its volume element.
+  const double element = 2.0 * std::numbers::pi * g.dx() * g.dy();
+  for (int a = 0; a < wr.width; ++a) {
+    int i = wr.first + a;
+    double sign = 1.0;
+    if (i < 0) i = normal_r ? -i : -1 - i, sign = normal_r ? -1.0 : 1.0;
+    if (wr.w[a] == 0.0 || !interior_sample(ar, normal_r, i)) continue;
+    const double radius = normal_r ? i * g.dx() : (i + 0.5) * g.dx();
+    const double w = sign * wr.w[a] / (element * radius);
+    t.source_r.add(i, w);
+    for (int b = 0; b < wz.width; ++b) {
+      const int j = wrap_periodic(az, wz.first + b);
+      if (wz.w[b] == 0.0 || !interior_sample(az, normal_z, j)) continue;
+      std::vector<std::pair<int, double>> targets{{j, 1.0}};
+      // apply_velocity_boundaries sets an outflow side's normal velocity to its first face's.
+      if (normal_z && j == 1 && az.low == BoundaryType::outflow) targets.push_back({0, 1.0});
+      if (normal_z && j == az.n - 1 && az.high == BoundaryType::outflow) targets.push_back({az.n, 1.0});
+      int i_target = i;
+      for (int copy = 0; copy < (normal_r && i == ar.n - 1 && ar.high == BoundaryType::outflow ? 2 : 1); ++copy) {
+        if (copy == 1) i_target = ar.n;
+        for (const auto& [jt, wt] : targets) {
+          const AxisImages images = axis_images(az, normal_z, jt);
+          for (int k = 0; k < images.count; ++k)
+            if (images.sign[k] != 0.0) t.sources.push_back({i_target, images.index[k], w * wz.w[b] * wt * images.sign[k]});
+        }
+      }
+    }
+  }
+  t.separable = clean_run(az, normal_z, wz.first, wz.width) &&
+                !(normal_r && ar.high == BoundaryType::outflow && wr.first + wr.width > ar.n - 1);
+  if (!t.separable) return;
+  t.width = wz.width;
+  t.j0 = wz.first;
+  std::copy(wz.w, wz.w + 4, t.wz);
+  t.z_image_count = image_runs(az, normal_z, wz.first, t.z_images);
+}
+
+double AxisymmetricMobility::entry(const Transfer& to, int c_to, const Transfer& from, int c_from) const {
+  const auto rows = static_cast<std::size_t>(geometry_.grid.nx + 1), pz = static_cast<std::size_t>(period_z_);
+  auto row = [&](int i_from, int i_to) {
+    return column(c_from, i_from).data() + (static_cast<std::size_t>(c_to) * rows + static_cast<std::size_t>(i_to)) * pz;
+  };
+  if (!(to.separable && from.separable)) {
+    double sum = 0.0;
+    for (const Transfer::Term& s : from.sources)
+      for (const Transfer::Term& f : to.read) {
+        int dj = f.j - s.j;
+        if (dj < 0) dj += period_z_;
+        sum += s.w * f.w * row(s.i, f.i)[dj];
+      }
+    return sum;
+  }
+  // Σ_images sign Σ_o c[o] T(dz + o): the z weights correlated once per image.
+  const int w = to.width, span = 2 * w - 1;
+  double c[4][7];
+  int dz[4];
+  for (int k = 0; k < from.z_image_count; ++k)
+    dz[k] = w == 2 ? correlate<2>(to.wz, to.j0, from.wz, from.z_images[k], period_z_, c[k])
+                   : correlate<4>(to.wz, to.j0, from.wz, from.z_images[k], period_z_, c[k]);
+  double sum = 0.0;
+  for (int a = 0; a < from.source_r.count; ++a)
+    for (int b = 0; b < to.read_r.count; ++b) {
+      const double* t = row(from.source_r.i[a], to.read_r.i[b]);
+      double along = 0.0;
+      for (int k = 0; k < from.z_image_count; ++k) {
+        double partial = 0.0;
+        if (dz[k] + span <= period_z_) {
+          for (int o = 0; o < span; ++o) partial += c[k][o] * t[dz[k] + o];
+        } else {
+          for (int o = 0; o < span; ++o) partial += c[k][o] * t[(dz[k] + o) % period_z_];
+        }
+        along += from.z_images[k].sign * partial;
+      }
+      sum += from.source_r.w[a] * to.read_r.w[b] * along;
+    }
+  return sum;
+}
+
+void AxisymmetricMobility::assemble(std::span<const Vec2> points, std::span<const char> masked,
+                                    std::span<const double> column_scale, double density_kg_per_m3,
+                                    Eigen::MatrixXd& r) const {
+  const std::size_t n = points.size();
+  r.setZero(2 * static_cast<Eigen::Index>(n), 2 * static_cast<Eigen::Index>(n));
+  auto is_masked = [&](std::size_t p) { return p < masked.size() && masked[p]; };
+  transfer_.resize(2 * n);
+  for (std::size_t p = 0; p < n; ++p)
+    for (int c = 0; c < 2; ++c) {
+      Transfer& t = transfer_[2 * p + static_cast<std::size_t>(c)];
+      if (is_masked(p)) t.read.clear(), t.sources.clear(), t.separable = false;
+      else prepare(points[p], c, t);
+    }
+  const double scale = 1.0 / density_kg_per_m3;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (is_masked(a)) continue;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (is_masked(b)) continue;
+      for (int c_to = 0; c_to < 2; ++c_to)
+        for (int c_from = 0; c_from < 2; ++c_from)
+          r(2 * static_cast<Eigen::Index>(a) + c_to, 2 * static_cast<Eigen::Index>(b) + c_from) =
+              scale * entry(transfer_[2 * a + static_cast<std::size_t>(c_to)], c_to,
+                            transfer_[2 * b + static_cast<std::size_t>(c_from)], c_from);
+    }
+  }
+  for (std::size_t b = 0; b < column_scale.size() && b < n; ++b)
+    r.middleCols(2 * static_cast<Eigen::Index>(b), 2) *= column_scale[b];
 }
 
 }  // namespace jellysim::coupling

@@ -194,7 +194,7 @@ TEST(RingJellyfish, SwimsAlongTheAxisFartherThanThePlanarSlice) {
               last.lateral, rec.stats.steps, rec.stats.krylov_iterations);
   EXPECT_GT(last.position, 0.8 * s.jellyfish().diameter_m);
   EXPECT_LT(last.position, 1.0 * s.jellyfish().diameter_m);
-  EXPECT_EQ(last.lateral, 0.0);
+  EXPECT_LT(std::abs(last.lateral), 1e-15);  // round-off of the centroid
   EXPECT_LE(rec.stats.krylov_iterations, 2 * rec.stats.steps);
 }
 

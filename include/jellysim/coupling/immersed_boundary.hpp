@@ -35,7 +35,7 @@ std::optional<Scheme> scheme_from_string(std::string_view name);
 enum class Preconditioner {
   none,      ///< plain GMRES: one projection per iteration, tens of iterations on fine grids
   mobility,  ///< the dense marker-space operator I − Δt² R K (mobility.hpp), LU-factored (right);
-             ///< on axisymmetric water R is built by projections (response_by_projections)
+             ///< on axisymmetric water from AxisymmetricMobility
 };
 std::string_view to_string(Preconditioner p);
 /// "none" or "mobility"; nullopt otherwise.
@@ -163,6 +163,7 @@ class ImmersedBoundary {
   bool has_targets_ = false;
   TransferGeometry transfer_;
   std::unique_ptr<MobilityMatrix> mobility_;  ///< built at the first preconditioned step
+  std::unique_ptr<AxisymmetricMobility> ring_mobility_;  ///< the same on axisymmetric water
   Eigen::MatrixXd mobility_matrix_;           ///< R at mobility_points_
   std::vector<Vec2> mobility_points_;         ///< marker positions R was built for
   Eigen::PartialPivLU<Eigen::MatrixXd> preconditioner_lu_;

@@ -110,4 +110,42 @@ class MobilityMatrix {
   mutable std::vector<Transfer> transfer_;  ///< assemble()'s per-marker scratch
 };
 
+/// The mobility of rings in axisymmetric water (fluid::Geometry::axisymmetric; the axis is the
+/// grid's west side): R = J P S / ρ with ring spreading (kernels.hpp: the stencil folded across
+/// the axis, a force F on face f an acceleration F w / (ρ 2π r_f Δr Δz)). Without translation
+/// invariance in r, the table holds per source face column i and component the box's response
+/// to a unit value on face (i, 0); along z the box is a torus with the sides' mirror images, as in
+/// MobilityMatrix. A column is one axisymmetric projection, made when a marker first spreads
+/// onto it. With the FFT pressure solver R equals the fluid's own response (test).
+class AxisymmetricMobility {
+ public:
+  /// geometry.west_mirror must be false (the axis folds the stencils by itself).
+  explicit AxisymmetricMobility(const TransferGeometry& geometry);
+  ~AxisymmetricMobility();
+  AxisymmetricMobility(const AxisymmetricMobility&) = delete;
+  AxisymmetricMobility& operator=(const AxisymmetricMobility&) = delete;
+
+  /// R among `points` (rings): 2M × 2M for M points, unknowns interleaved r0, z0, r1, …, in m/s
+  /// per N. Column b is scaled by column_scale[b] (empty: 1), e.g. ½ for a point on the axis of a
+  /// whole slice, which spreads half its force. Rows and columns of masked points are zero.
+  void assemble(std::span<const Vec2> points, std::span<const char> masked, std::span<const double> column_scale,
+                double density_kg_per_m3, Eigen::MatrixXd& r) const;
+  /// Projections made so far for the table (one per source column and component).
+  int columns_built() const { return columns_built_; }
+
+  struct Transfer;  ///< one marker's transfer for one component (mobility.cpp)
+
+ private:
+  /// The response table of source column i_from of component c_from: [c_to][i_to][dj].
+  const std::vector<double>& column(int c_from, int i_from) const;
+  void prepare(Vec2 p, int component, Transfer& t) const;
+  double entry(const Transfer& to, int c_to, const Transfer& from, int c_from) const;
+
+  TransferGeometry geometry_;
+  int period_z_ = 0;
+  mutable std::vector<std::vector<double>> columns_;  ///< [2 · i_from + c_from], empty until needed
+  mutable int columns_built_ = 0;
+  mutable std::vector<Transfer> transfer_;
+};
+
 }  // namespace jellysim::coupling
