@@ -10,6 +10,9 @@
 //  - BM_MobilityAssemble/<half>: one build of the dense mobility for the built-in scene's markers at
 //    rest (what the marker-space solve does every step): the whole tank (0), or the east half's rows
 //    on the half tank (1, as the default run does).
+//  - BM_Geometry/<geometry>: one cycle of the built-in scene on its east half, planar or
+//    axisymmetric (the ring bell, issue 22), with the scene's adaptive step (the faster ring bell
+//    takes more steps: CFL) and at a fixed 2.5 ms step (the same steps: the cost of one).
 //  - BM_HooverMiller/<scheme>: IB2d's Hoover–Miller bell (experiment hoover-miller, Re 150, IB2d's
 //    N = 256: 96 × 320 cells, periodic), as the experiment runs it: the semi-implicit coupling for one
 //    1 s cycle; and the explicit coupling at IB2d's own step (Δt = 1e-5 s, its input2d) for 0.01 s,
@@ -66,6 +69,18 @@ BENCHMARK_CAPTURE(BM_Swim, builtin_semi_implicit, nullptr, true)->Unit(benchmark
 BENCHMARK_CAPTURE(BM_Swim, thesis_explicit, "scenes/jellyfish-thesis.toml", false)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Swim, thesis_semi_implicit, "scenes/jellyfish-thesis.toml", true)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Swim, fine_semi_implicit, "scenes/jellyfish-fine.toml", true)->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_Geometry(benchmark::State& state, const char* geometry, bool fixed_step) {
+  io::Config c = one_cycle(nullptr);
+  c.set(std::string("tank.geometry=\"") + geometry + "\"");
+  if (fixed_step) c.set("coupling.max_dt=0.0025");  // below both CFL limits: the same steps
+  report(state, scene::read_swim_settings(c));
+}
+
+BENCHMARK_CAPTURE(BM_Geometry, planar_half_tank, "planar", false)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Geometry, axisymmetric, "axisymmetric", false)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Geometry, planar_half_tank_fixed_step, "planar", true)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Geometry, axisymmetric_fixed_step, "axisymmetric", true)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_HooverMiller(benchmark::State& state, bool semi_implicit) {
   io::Config c = experiments::default_config(experiments::find_experiment("hoover-miller"));
