@@ -70,9 +70,11 @@ RunResult run_geometry(const jellyfish::SwimSettings& settings, const char* name
   r.picture = swim_picture(sim, 0.0);
   const double d = settings.jellyfish().diameter_m;
   const Vec2 apex = frames.back().umbrella[frames.back().umbrella.size() / 2];
-  // The bell and its wake: from five diameters below the apex to one above, the tank's width.
-  r.picture.view_m = std::array<Vec2, 2>{Vec2{0.0, std::max(0.0, apex.y - 5.0 * d)},
-                                         Vec2{settings.tank.width_m, std::min(settings.tank.height_m, apex.y + d)}};
+  // The bell and its wake: from five diameters below the apex to one above (moved into the tank),
+  // the tank's width.
+  const double height = std::min(6.0 * d, settings.tank.height_m);
+  const double bottom = std::clamp(apex.y - 5.0 * d, 0.0, settings.tank.height_m - height);
+  r.picture.view_m = std::array<Vec2, 2>{Vec2{0.0, bottom}, Vec2{settings.tank.width_m, bottom + height}};
   char caption[96];
   std::snprintf(caption, sizeof caption, "%s, t = %.2f s", name, sim.time_s());
   r.picture.caption = caption;
@@ -148,7 +150,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_axisymmetric_vs_planar(cons
     render::FieldPictureOptions po;
     po.quantity = render::FieldQuantity::vorticity;
     po.arrows = false;
-    po.colour_range_max = 40.0;  // 1/s: the same scale in both panels
+    po.colour_range_max = 10.0;  // 1/s: the same scale in both panels
     if (!panels.empty())
       write_via_temporary(out, "wakes.png", [&](const auto& path) {
         render::write_field_panels_png(panels, static_cast<int>(panels.size()), po, path);

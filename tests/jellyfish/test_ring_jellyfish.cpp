@@ -199,8 +199,9 @@ TEST(RingJellyfish, SwimsAlongTheAxisFartherThanThePlanarSlice) {
 }
 
 // Ten cycles in a tank twice as tall as the built-in one (the ring bell swims about a diameter per
-// cycle): structurally sound, forward in every cycle, its cavity volume oscillating at the
-// contraction frequency.
+// cycle): structurally sound, forward in every cycle by more than half a diameter (measured 3.3 to
+// 3.8 cm, 0.83-0.95 diameters; 35.8 cm in all), its cavity volume oscillating at the contraction
+// frequency.
 TEST(SlowRingJellyfish, SwimsTenCyclesAlongTheAxis) {
   jellyfish::SwimSettings s = experiments::read_swim_settings(axisymmetric_scene("[tank]\nheight = 0.64\ncells = [96, 256]\n"));
   ASSERT_NEAR(s.duration_s * s.jellyfish().frequency_hz, 10.0, 1e-9);
