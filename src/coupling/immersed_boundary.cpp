@@ -481,10 +481,7 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
       }
       Eigen::MatrixXd r;
       ring_mobility_->assemble(rings, masked, scale, rho, r);
-      const auto d = static_cast<Eigen::Index>(picked_rows_.size());
-      reduced_mobility_.resize(d, d);
-      for (Eigen::Index a = 0; a < d; ++a)
-        for (Eigen::Index b = 0; b < d; ++b) reduced_mobility_(a, b) = r(picked_rows_[static_cast<std::size_t>(a)], picked_rows_[static_cast<std::size_t>(b)]);
+      reduced_mobility_ = r(picked_rows_, picked_rows_);  // the symmetric unknowns' rows and columns
     } else {
       ring_mobility_->assemble(x, is_target_, {}, rho, mobility_matrix_);
     }

@@ -584,19 +584,19 @@ void AxisymmetricMobility::prepare(Vec2 p, int component, Transfer& t) const {
     for (int b = 0; b < wz.width; ++b) {
       const int j = wrap_periodic(az, wz.first + b);
       if (wz.w[b] == 0.0 || !interior_sample(az, normal_z, j)) continue;
-      std::vector<std::pair<int, double>> targets{{j, 1.0}};
-      // apply_velocity_boundaries sets an outflow side's normal velocity to its first face's.
-      if (normal_z && j == 1 && az.low == BoundaryType::outflow) targets.push_back({0, 1.0});
-      if (normal_z && j == az.n - 1 && az.high == BoundaryType::outflow) targets.push_back({az.n, 1.0});
-      int i_target = i;
-      for (int copy = 0; copy < (normal_r && i == ar.n - 1 && ar.high == BoundaryType::outflow ? 2 : 1); ++copy) {
-        if (copy == 1) i_target = ar.n;
-        for (const auto& [jt, wt] : targets) {
-          const AxisImages images = axis_images(az, normal_z, jt);
+      // apply_velocity_boundaries sets an outflow side's normal velocity to its first face's: the
+      // face spread onto, and its copies on an outflow side.
+      int rows_z[2] = {j, j}, rows_r[2] = {i, i};
+      int count_z = 1, count_r = 1;
+      if (normal_z && j == 1 && az.low == BoundaryType::outflow) rows_z[count_z++] = 0;
+      if (normal_z && j == az.n - 1 && az.high == BoundaryType::outflow) rows_z[count_z++] = az.n;
+      if (normal_r && i == ar.n - 1 && ar.high == BoundaryType::outflow) rows_r[count_r++] = ar.n;
+      for (int cr = 0; cr < count_r; ++cr)
+        for (int cz = 0; cz < count_z; ++cz) {
+          const AxisImages images = axis_images(az, normal_z, rows_z[cz]);
           for (int k = 0; k < images.count; ++k)
-            if (images.sign[k] != 0.0) t.sources.push_back({i_target, images.index[k], w * wz.w[b] * wt * images.sign[k]});
+            if (images.sign[k] != 0.0) t.sources.push_back({rows_r[cr], images.index[k], w * wz.w[b] * images.sign[k]});
         }
-      }
     }
   }
   t.separable = clean_run(az, normal_z, wz.first, wz.width) &&
