@@ -46,33 +46,60 @@ inline double limited_flux(double carrier, double q_far_minus, double q_minus, d
                         : carrier * limited_face_value<S>(q_far_plus, q_plus, q_minus);
 }
 
-// ∂(u²)/∂x + ∂(uv)/∂y at the x-face (i, j) with limited face values of u (same carriers as
+/// The fluxes of a face-centred quantity through the four sides of its control volume.
+struct SideFluxes {
+  double east, west, north, south;
+};
+
+// The fluxes of u around the x-face (i, j) with limited face values of u (same carriers as
 // convection_u).
 template <ConvectionScheme S>
-double limited_convection_u(const Velocity& vel, const StencilReader& u, int i, int j) {
+SideFluxes limited_u_side_fluxes(const Velocity& vel, const StencilReader& u, int i, int j) {
   const Field& v = vel.v;
-  const MacGrid& g = v.grid();
   const double c = u(i, j);
-  const double east = limited_flux<S>(0.5 * (c + u(i + 1, j)), u(i - 1, j), c, u(i + 1, j), u(i + 2, j));
-  const double west = limited_flux<S>(0.5 * (u(i - 1, j) + c), u(i - 2, j), u(i - 1, j), c, u(i + 1, j));
-  const double north =
-      limited_flux<S>(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j - 1), c, u(i, j + 1), u(i, j + 2));
-  const double south = limited_flux<S>(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 2), u(i, j - 1), c, u(i, j + 1));
-  return (east - west) / g.dx() + (north - south) / g.dy();
+  return {limited_flux<S>(0.5 * (c + u(i + 1, j)), u(i - 1, j), c, u(i + 1, j), u(i + 2, j)),
+          limited_flux<S>(0.5 * (u(i - 1, j) + c), u(i - 2, j), u(i - 1, j), c, u(i + 1, j)),
+          limited_flux<S>(0.5 * (v(i - 1, j + 1) + v(i, j + 1)), u(i, j - 1), c, u(i, j + 1), u(i, j + 2)),
+          limited_flux<S>(0.5 * (v(i - 1, j) + v(i, j)), u(i, j - 2), u(i, j - 1), c, u(i, j + 1))};
+}
+
+// The same for v around the y-face (i, j).
+template <ConvectionScheme S>
+SideFluxes limited_v_side_fluxes(const Velocity& vel, const StencilReader& v, int i, int j) {
+  const Field& u = vel.u;
+  const double c = v(i, j);
+  return {limited_flux<S>(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i - 1, j), c, v(i + 1, j), v(i + 2, j)),
+          limited_flux<S>(0.5 * (u(i, j - 1) + u(i, j)), v(i - 2, j), v(i - 1, j), c, v(i + 1, j)),
+          limited_flux<S>(0.5 * (c + v(i, j + 1)), v(i, j - 1), c, v(i, j + 1), v(i, j + 2)),
+          limited_flux<S>(0.5 * (v(i, j - 1) + c), v(i, j - 2), v(i, j - 1), c, v(i, j + 1))};
+}
+
+/// ∂(u²)/∂x + ∂(uv)/∂y (planar) from the side fluxes around x-face (i, j).
+double planar_divergence(const SideFluxes& f, const MacGrid& g) {
+  return (f.east - f.west) / g.dx() + (f.north - f.south) / g.dy();
+}
+
+/// (1/r) ∂(r u²)/∂r + ∂(uv)/∂z around the r-face (i, j): the r-fluxes at the cell centres either side.
+double axisymmetric_u_divergence(const SideFluxes& f, const MacGrid& g, int i) {
+  return ((i + 0.5) * f.east - (i - 0.5) * f.west) / (i * g.dx()) + (f.north - f.south) / g.dy();
+}
+
+/// (1/r) ∂(r u v)/∂r + ∂(v²)/∂z around the z-face (i, j): the r-fluxes through the faces at iΔr
+/// (zero on the axis) and (i + 1)Δr.
+double axisymmetric_v_divergence(const SideFluxes& f, const MacGrid& g, int i) {
+  return ((i + 1.0) * f.east - i * f.west) / ((i + 0.5) * g.dx()) + (f.north - f.south) / g.dy();
+}
+
+// ∂(u²)/∂x + ∂(uv)/∂y at the x-face (i, j) with limited face values of u.
+template <ConvectionScheme S>
+double limited_convection_u(const Velocity& vel, const StencilReader& u, int i, int j) {
+  return planar_divergence(limited_u_side_fluxes<S>(vel, u, i, j), vel.u.grid());
 }
 
 // ∂(uv)/∂x + ∂(v²)/∂y at the y-face (i, j) with limited face values of v.
 template <ConvectionScheme S>
 double limited_convection_v(const Velocity& vel, const StencilReader& v, int i, int j) {
-  const Field& u = vel.u;
-  const MacGrid& g = u.grid();
-  const double c = v(i, j);
-  const double east =
-      limited_flux<S>(0.5 * (u(i + 1, j - 1) + u(i + 1, j)), v(i - 1, j), c, v(i + 1, j), v(i + 2, j));
-  const double west = limited_flux<S>(0.5 * (u(i, j - 1) + u(i, j)), v(i - 2, j), v(i - 1, j), c, v(i + 1, j));
-  const double north = limited_flux<S>(0.5 * (c + v(i, j + 1)), v(i, j - 1), c, v(i, j + 1), v(i, j + 2));
-  const double south = limited_flux<S>(0.5 * (v(i, j - 1) + c), v(i, j - 2), v(i, j - 1), c, v(i, j + 1));
-  return (east - west) / g.dx() + (north - south) / g.dy();
+  return planar_divergence(limited_v_side_fluxes<S>(vel, v, i, j), vel.u.grid());
 }
 
 }  // namespace
@@ -100,9 +127,6 @@ double convection_v_limited(const Velocity& vel, const Boundaries& b, int i, int
 namespace {
 
 /// The γ-blended fluxes of u through the four sides of its control volume around x-face (i, j).
-struct SideFluxes {
-  double east, west, north, south;
-};
 SideFluxes u_side_fluxes(const Velocity& vel, int i, int j, double gamma) {
   const Field& u = vel.u;
   const Field& v = vel.v;
@@ -125,15 +149,11 @@ SideFluxes v_side_fluxes(const Velocity& vel, int i, int j, double gamma) {
 }  // namespace
 
 double convection_u(const Velocity& vel, int i, int j, double gamma) {
-  const MacGrid& g = vel.u.grid();
-  const SideFluxes f = u_side_fluxes(vel, i, j, gamma);
-  return (f.east - f.west) / g.dx() + (f.north - f.south) / g.dy();
+  return planar_divergence(u_side_fluxes(vel, i, j, gamma), vel.u.grid());
 }
 
 double convection_v(const Velocity& vel, int i, int j, double gamma) {
-  const MacGrid& g = vel.u.grid();
-  const SideFluxes f = v_side_fluxes(vel, i, j, gamma);
-  return (f.east - f.west) / g.dx() + (f.north - f.south) / g.dy();
+  return planar_divergence(v_side_fluxes(vel, i, j, gamma), vel.u.grid());
 }
 
 // ---- Axisymmetric flow without swirl (x = r from the axis, y = z; fluid_solver.hpp) ----
@@ -156,24 +176,16 @@ double axisymmetric_viscous_v(const Field& v, int i, int j) {
 }
 
 double axisymmetric_convection_u(const Velocity& vel, int i, int j, double gamma) {
-  // (1/r) ∂(r u²)/∂r + ∂(uv)/∂z (no swirl: no −u_θ²/r), the r-fluxes at the cell centres.
-  const MacGrid& g = vel.u.grid();
-  const SideFluxes f = u_side_fluxes(vel, i, j, gamma);
-  return ((i + 0.5) * f.east - (i - 0.5) * f.west) / (i * g.dx()) + (f.north - f.south) / g.dy();
+  // No swirl: no −u_θ²/r term.
+  return axisymmetric_u_divergence(u_side_fluxes(vel, i, j, gamma), vel.u.grid(), i);
 }
 
 double axisymmetric_convection_v(const Velocity& vel, int i, int j, double gamma) {
-  // (1/r) ∂(r u v)/∂r + ∂(v²)/∂z, the r-fluxes through the faces at iΔr (zero on the axis) and (i + 1)Δr.
-  const MacGrid& g = vel.u.grid();
-  const SideFluxes f = v_side_fluxes(vel, i, j, gamma);
-  return ((i + 1.0) * f.east - i * f.west) / ((i + 0.5) * g.dx()) + (f.north - f.south) / g.dy();
+  return axisymmetric_v_divergence(v_side_fluxes(vel, i, j, gamma), vel.u.grid(), i);
 }
 
 EulerianSolver::EulerianSolver(const MacGrid& grid, const FluidSettings& settings)
-    : FluidSolver(grid, settings), predictor_(grid) {
-  if (settings.geometry == Geometry::axisymmetric && settings.convection != ConvectionScheme::donor_cell)
-    throw std::invalid_argument("axisymmetric flow: only donor-cell convection so far");
-}
+    : FluidSolver(grid, settings), predictor_(grid) {}
 
 double EulerianSolver::stable_time_step() const {
   const double dt = stability_time_step(state_.velocity, settings_.viscosity_m2_per_s, settings_.safety_factor,
@@ -228,6 +240,13 @@ void EulerianSolver::compute_limited_predictor(double dt_s) {
   const Velocity& vel = state_.velocity;
   const StencilReader u(vel.u, settings_.boundaries);
   const StencilReader v(vel.v, settings_.boundaries);
+  const MacGrid& g = state_.grid;
+  if (settings_.geometry == Geometry::axisymmetric)  // the axis's free-slip ghosts are the mirror images
+    return compute_predictor_with(
+        dt_s, [&](int i, int j) { return axisymmetric_u_divergence(limited_u_side_fluxes<S>(vel, u, i, j), g, i); },
+        [&](int i, int j) { return axisymmetric_v_divergence(limited_v_side_fluxes<S>(vel, v, i, j), g, i); },
+        [&](int i, int j) { return axisymmetric_viscous_u(vel.u, i, j); },
+        [&](int i, int j) { return axisymmetric_viscous_v(vel.v, i, j); });
   compute_predictor_with(
       dt_s, [&](int i, int j) { return limited_convection_u<S>(vel, u, i, j); },
       [&](int i, int j) { return limited_convection_v<S>(vel, v, i, j); });
@@ -235,7 +254,7 @@ void EulerianSolver::compute_limited_predictor(double dt_s) {
 
 void EulerianSolver::compute_predictor(double dt_s, double gamma) {
   const Velocity& vel = state_.velocity;
-  if (settings_.geometry == Geometry::axisymmetric)
+  if (settings_.geometry == Geometry::axisymmetric && settings_.convection == ConvectionScheme::donor_cell)
     return compute_predictor_with(
         dt_s, [&](int i, int j) { return axisymmetric_convection_u(vel, i, j, gamma); },
         [&](int i, int j) { return axisymmetric_convection_v(vel, i, j, gamma); },

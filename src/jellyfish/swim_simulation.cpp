@@ -117,8 +117,6 @@ void validate_geometry(const SwimSettings& settings) {
   if (t.cells_x % 2 != 0) refuse("the axis is the centre line, a cell face: tank.cells[0] must be even");
   if (t.boundaries.periodic_x()) refuse("the radial direction cannot be periodic (tank.boundaries west/east)");
   if (t.pressure_solver == "multigrid") refuse("the multigrid pressure solver is planar only (use fft, direct or sor)");
-  if (t.solver == "eulerian" && t.convection != fluid::ConvectionScheme::donor_cell)
-    refuse("the Eulerian solver has only the donor-cell (γ blend) convection in this geometry (tank.convection)");
   const double axis = 0.5 * t.width_m;
   for (std::size_t k = 0; k < settings.school.size(); ++k) {
     const JellyfishSpec& j = settings.school[k];

@@ -143,7 +143,6 @@ TEST(RingJellyfish, AxisymmetricScenesRefuseWhatTheyCannotSimulate) {
   EXPECT_NE(input_error("[jellyfish]\nposition = [0.1, 0.08]\n").find("centre line"), std::string::npos);
   EXPECT_NE(input_error("[tank]\nsymmetry = \"none\"\n").find("tank.symmetry"), std::string::npos);
   EXPECT_NE(input_error("[tank]\npressure_solver = \"multigrid\"\n").find("multigrid"), std::string::npos);
-  EXPECT_NE(input_error("[tank]\nconvection = \"koren\"\n").find("tank.convection"), std::string::npos);
   EXPECT_NE(input_error("[tank]\ncells = [95, 128]\n").find("even"), std::string::npos);
   EXPECT_NE(input_error("[[objects]]\ntype = \"circle\"\ncentre = [0.05, 0.25]\nradius = 0.01\n").find("obstacles"),
             std::string::npos);
