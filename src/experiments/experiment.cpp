@@ -87,6 +87,13 @@ io::Config default_config(const Experiment& experiment) {
   return base;
 }
 
+void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timings) {
+  nlohmann::ordered_json t;
+  t["units"] = {{"time", "s"}};
+  for (const auto& [key, value] : timings.items()) t[key] = value;
+  out.write_json("timings.json", t);
+}
+
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
                    const nlohmann::ordered_json& figures, const std::string& failure) {
   nlohmann::ordered_json summary;

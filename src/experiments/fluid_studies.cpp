@@ -78,8 +78,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_taylor_green(const Context&
 // ---- solver-cost ----------------------------------------------------------------------------
 
 void write_solver_cost(const io::OutputDir& out, const std::vector<studies::SolverCostRow>& rows) {
-  io::CsvWriter csv({"solver", "pressure_solver", "cells", "dt", "steps", "seconds_per_step",
-                     "seconds_per_simulated_second", "mean_pressure_iterations", "error_l2"});
+  io::CsvWriter csv({"solver", "pressure_solver", "cells", "dt", "steps", "mean_pressure_iterations", "error_l2"});
+  nlohmann::ordered_json timings = nlohmann::ordered_json::array();
   render::ChartSpec chart;
   chart.title = "Fluid solver cost per step";
   chart.x_label = "cells";
@@ -88,8 +88,11 @@ void write_solver_cost(const io::OutputDir& out, const std::vector<studies::Solv
   chart.log_x = chart.log_y = true;
   for (const auto& r : rows) {
     const std::string label = r.solver + " + " + r.pressure_solver;
-    csv.row({r.solver, r.pressure_solver}, {static_cast<double>(r.cells), r.dt_s, static_cast<double>(r.steps), r.seconds_per_step,
-                    r.seconds_per_simulated_second, r.mean_pressure_iterations, r.error_l2});
+    csv.row({r.solver, r.pressure_solver},
+            {static_cast<double>(r.cells), r.dt_s, static_cast<double>(r.steps), r.mean_pressure_iterations, r.error_l2});
+    timings.push_back({{"solver", r.solver}, {"pressure_solver", r.pressure_solver}, {"cells", r.cells},
+                       {"seconds_per_step", r.seconds_per_step},
+                       {"seconds_per_simulated_second", r.seconds_per_simulated_second}});
     if (chart.series.empty() || chart.series.back().label != label) {
       chart.series.emplace_back();
       chart.series.back().label = label;
@@ -99,6 +102,7 @@ void write_solver_cost(const io::OutputDir& out, const std::vector<studies::Solv
     chart.series.back().y.push_back(r.seconds_per_step);
   }
   out.write_text("solver_cost.csv", csv.text());
+  write_timings(out, {{"runs", timings}});
   write_chart(out, "solver_cost.png", std::move(chart));
 }
 

@@ -68,7 +68,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
         chart.series.back().y.push_back(f.area / a0);
       }
     }
-    io::CsvWriter refine({"cells", "dt", "area_lost_percent", "final_aspect_ratio", "wall_seconds"});
+    io::CsvWriter refine({"cells", "dt", "area_lost_percent", "final_aspect_ratio"});
+    nlohmann::ordered_json refine_timings = nlohmann::ordered_json::array();
     nlohmann::ordered_json study = nlohmann::ordered_json::array();
     for (const auto cells : refinement) {
       studies::OvalMembraneSettings s = base;
@@ -76,7 +77,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
       s.dt_s = base.dt_s * base.cells / static_cast<double>(cells);  // same Courant number
       const studies::MembraneRun r = studies::run_oval_membrane(s);
       const double lost = 100.0 * (1.0 - r.frames.back().area / r.frames.front().area);
-      refine.row({static_cast<double>(cells), s.dt_s, lost, r.frames.back().aspect_ratio, r.wall_seconds});
+      refine.row({static_cast<double>(cells), s.dt_s, lost, r.frames.back().aspect_ratio});
+      refine_timings.push_back({{"cells", cells}, {"wall_seconds", r.wall_seconds}});
       study.push_back({{"cells", cells}, {"area_lost_percent", lost}, {"failure", r.failure}});
       chart.series.emplace_back();
       chart.series.back().label = std::to_string(cells) + " x " + std::to_string(cells);
@@ -86,6 +88,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
       }
     }
     out.write_text("refinement.csv", refine.text());
+    write_timings(out, {{"refinement", refine_timings}});
     write_chart(out, "area.png", chart);
     nlohmann::ordered_json fig;
     fig["solver"] = base.solver;
@@ -282,10 +285,11 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
       runs[k].rec = run_swim(s, {}, nullptr, {});
     });
 
-    io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "wall_seconds", "failed",
-                       "placements", "distance_min", "distance_max", "distance_std"});
-    io::CsvWriter run_csv({"frequency", "placement", "offset", "distance_travelled", "lateral_drift", "wall_seconds",
-                           "failed"});
+    io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "failed", "placements",
+                       "distance_min", "distance_max", "distance_std"});
+    io::CsvWriter run_csv({"frequency", "placement", "offset", "distance_travelled", "lateral_drift", "failed"});
+    nlohmann::ordered_json frequency_timings = nlohmann::ordered_json::array(),
+                           run_timings = nlohmann::ordered_json::array();
     render::ChartSpec distance, trajectories;
     distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
     distance.x_label = "frequency";
@@ -307,7 +311,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     nlohmann::ordered_json table = nlohmann::ordered_json::array();
     for (const auto& r : runs) {
       run_csv.row({r.frequency, static_cast<double>(r.placement), r.offset_m, r.distance(), r.lateral(),
-                   r.rec.stats.wall_seconds, r.sound() ? 0.0 : 1.0});
+                   r.sound() ? 0.0 : 1.0});
+      run_timings.push_back({{"frequency", r.frequency}, {"placement", r.placement}, {"wall_seconds", r.rec.stats.wall_seconds}});
       distance.series[1].x.push_back(r.frequency);
       distance.series[1].y.push_back(r.distance());
       table.push_back({{"frequency", r.frequency}, {"placement", r.placement}, {"offset", r.offset_m},
@@ -325,8 +330,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
       const SweepPoint p = summarise_frequency(runs, i);
       const double f = p.frequency;
       const double speed = base.duration_s > 0 ? p.mean / base.duration_s : 0.0;
-      csv.row({f, p.mean, speed, p.lateral, p.wall_s, static_cast<double>(p.failed), static_cast<double>(p.runs),
-               p.min, p.max, p.std_dev});
+      csv.row({f, p.mean, speed, p.lateral, static_cast<double>(p.failed), static_cast<double>(p.runs), p.min, p.max,
+               p.std_dev});
+      frequency_timings.push_back({{"frequency", f}, {"wall_seconds", p.wall_s}});
       distance.series[0].x.push_back(f);
       distance.series[0].y.push_back(p.mean);
       if (p.failed < p.runs && p.mean > best) {
@@ -336,6 +342,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     }
     out.write_text("sweep.csv", csv.text());
     out.write_text("sweep_runs.csv", run_csv.text());
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_timings(out, {{"wall_seconds", wall}, {"frequencies", frequency_timings}, {"runs", run_timings}});
     write_chart(out, "sweep.png", distance);
     write_chart(out, "trajectories.png", trajectories);
     nlohmann::ordered_json fig;
@@ -344,7 +352,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     fig["best_distance"] = std::isfinite(best) ? best : 0.0;
     fig["placements"] = placements;
     fig["threads"] = threads;
-    fig["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fig["wall_seconds"] = wall;
     fig["simulated_seconds"] = base.duration_s;
     fig["bell_height"] = base.jellyfish().height_m;
     fig["runs"] = table;
@@ -412,9 +420,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_coupling_stability(const Co
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
   const std::vector<double> steps = scene::read_coupling_stability_steps(ctx.config);
   return [base, steps, ctx](const io::OutputDir& out) {
-    io::CsvWriter csv({"dt", "explicit_stable", "explicit_wall_per_simulated_second", "semi_implicit_stable",
-                       "semi_implicit_wall_per_simulated_second", "semi_implicit_krylov_per_step"});
-    nlohmann::ordered_json fig, runs = nlohmann::ordered_json::array();
+    io::CsvWriter csv({"dt", "explicit_stable", "semi_implicit_stable", "semi_implicit_krylov_per_step"});
+    nlohmann::ordered_json fig, runs = nlohmann::ordered_json::array(), timings = nlohmann::ordered_json::array();
     double largest[2] = {0.0, 0.0};
     for (double dt : steps) {
       double wall[2] = {0, 0}, krylov = 0.0;
@@ -430,12 +437,15 @@ std::function<Outcome(const io::OutputDir&)> prepare_coupling_stability(const Co
         wall[scheme] = r.stats.simulated_seconds > 0 ? r.stats.wall_seconds / r.stats.simulated_seconds : 0.0;
         if (scheme == 1 && r.stats.steps > 0) krylov = static_cast<double>(r.stats.krylov_iterations) / r.stats.steps;
         if (stable[scheme]) largest[scheme] = std::max(largest[scheme], dt);
-        runs.push_back({{"dt", dt}, {"scheme", scheme == 0 ? "explicit" : "semi-implicit"}, {"failure", r.stats.failure},
-                        {"wall_per_simulated_second", wall[scheme]}, {"distance_travelled", r.metrics.empty() ? 0.0 : r.metrics.back().position}});
+        const char* name = scheme == 0 ? "explicit" : "semi-implicit";
+        runs.push_back({{"dt", dt}, {"scheme", name}, {"failure", r.stats.failure},
+                        {"distance_travelled", r.metrics.empty() ? 0.0 : r.metrics.back().position}});
+        timings.push_back({{"dt", dt}, {"scheme", name}, {"wall_per_simulated_second", wall[scheme]}});
       }
-      csv.row({dt, stable[0] ? 1.0 : 0.0, wall[0], stable[1] ? 1.0 : 0.0, wall[1], krylov});
+      csv.row({dt, stable[0] ? 1.0 : 0.0, stable[1] ? 1.0 : 0.0, krylov});
     }
     out.write_text("coupling_stability.csv", csv.text());
+    write_timings(out, {{"runs", timings}});
     fig["largest_stable_dt_explicit"] = largest[0];
     fig["largest_stable_dt_semi_implicit"] = largest[1];
     fig["stable_step_ratio"] = largest[0] > 0 ? largest[1] / largest[0] : 0.0;

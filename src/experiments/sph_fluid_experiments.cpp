@@ -196,8 +196,9 @@ std::string short_name(const std::string& method, const std::string& control) {
 }
 
 void write_cost(const io::OutputDir& out, const std::vector<CostRow>& rows, double duration) {
-  io::CsvWriter csv({"integrator", "error_control", "gas_constant", "cpu_seconds", "wall_seconds", "steps", "rejected_steps",
-                     "function_evaluations", "simulated_seconds", "completed"});
+  io::CsvWriter csv({"integrator", "error_control", "gas_constant", "steps", "rejected_steps", "function_evaluations",
+                     "simulated_seconds", "completed"});
+  nlohmann::ordered_json timings = nlohmann::ordered_json::array();
   render::ChartSpec chart;
   chart.title = "CPU time to simulate " + io::format_double(duration) + " s of the mosquito larva";
   chart.x_label = "gas constant kappa_p";
@@ -206,9 +207,11 @@ void write_cost(const io::OutputDir& out, const std::vector<CostRow>& rows, doub
   chart.log_x = chart.log_y = true;
   for (const CostRow& r : rows) {
     const auto& st = r.result.statistics;
-    csv.row({r.integrator, r.control}, {r.gas_constant, r.cpu_seconds, r.wall_seconds, static_cast<double>(st.steps),
+    csv.row({r.integrator, r.control}, {r.gas_constant, static_cast<double>(st.steps),
                                         static_cast<double>(st.rejected_steps), static_cast<double>(st.function_evaluations),
                                         st.simulated_seconds, r.result.failed ? 0.0 : 1.0});
+    timings.push_back({{"integrator", r.integrator}, {"error_control", r.control}, {"gas_constant", r.gas_constant},
+                       {"cpu_seconds", r.cpu_seconds}, {"wall_seconds", r.wall_seconds}});
     const std::string label = short_name(r.integrator, r.control);
     if (chart.series.empty() || chart.series.back().label != label) {
       chart.series.emplace_back();
@@ -222,6 +225,7 @@ void write_cost(const io::OutputDir& out, const std::vector<CostRow>& rows, doub
     }
   }
   out.write_text("integrator_cost.csv", csv.text());
+  write_timings(out, {{"runs", timings}});
   write_chart(out, "integrator_cost.png", chart);
 }
 

@@ -53,6 +53,11 @@ std::string_view embedded_text(std::string_view path);
 /// parameter table (the jellyfish scene, driven-cavity, oval-membrane) the text generated from it.
 std::string definition_text(std::string_view path);
 
+/// Writes timings.json: the run's wall-clock (and CPU) measurements, which differ from run to run.
+/// They live here (and in summary.json's wall_seconds), never in a CSV, so that every CSV of a
+/// command is byte-identical for the same inputs.
+void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timings);
+
 /// Writes summary.json: status, version, command, key figures and the resolved configuration.
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
                    const nlohmann::ordered_json& figures, const std::string& failure);
