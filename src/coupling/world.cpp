@@ -126,7 +126,8 @@ void World::end_mirror_symmetry() {
 
 void World::stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_m) {
   if (!(radius_m > 0)) throw std::invalid_argument("stir radius must be > 0");
-  end_mirror_symmetry();
+  // Axisymmetric water: a splat of the (r, z) half plane is a ring about the axis (the symmetry stays).
+  if (!axisymmetric()) end_mirror_symmetry();
   auto splat = [&](fluid::Field& f, double amount) {
     for (int j = 0; j < f.count_y(); ++j)
       for (int i = 0; i < f.count_x(); ++i) {

@@ -137,6 +137,34 @@ TEST(Viewer, ScriptedInputUnderXvfbChangesTheStateAndDrawsAPicture) {
   EXPECT_GT(panel_colours.size(), 50u);
 }
 
+// An axisymmetric tank in the viewer (issue 22): the ring bell keeps its symmetry through every
+// edit — a diagonal drag moves it along the axis only, stirring makes a ring, a right-click
+// (steering) is ignored — and it swims on.
+TEST(Viewer, AxisymmetricBellStaysOnItsAxis) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const auto dir = fresh_scratch_dir("viewer_axisymmetric");
+  std::filesystem::create_directories(dir);
+  const std::string events = "2 pause; 3 drag " + std::to_string(screen_x(0.4)) + " " + std::to_string(screen_y(0.328)) +
+                             " " + std::to_string(screen_x(0.5)) + " " + std::to_string(screen_y(0.378)) +
+                             " 5; 10 mark moved; 11 pause; 12 drag 100 200 160 200 5; 20 press " +
+                             std::to_string(screen_x(0.6)) + " " + std::to_string(screen_y(0.6)) + " right; 21 release " +
+                             std::to_string(screen_x(0.6)) + " " + std::to_string(screen_y(0.6)) + " right; 40 mark swum";
+  const auto r = run_viewer_headless(kThesisScene +
+                                     " --set tank.geometry=axisymmetric --width 1280 --height 720 --frames 42 --fps 0"
+                                     " --inject \"" + events + "\" --stats " + (dir / "stats.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto stats = nlohmann::json::parse(read_text_file(dir / "stats.json"));
+  EXPECT_EQ(stats["failure"], "");
+  const auto before = timeline_entry(stats, "2 pause")["jellyfish"][0]["centroid_m"];
+  const auto moved = timeline_entry(stats, "10 mark moved");
+  EXPECT_NEAR(moved["jellyfish"][0]["centroid_m"][0].get<double>(), before[0].get<double>(), 1e-12);
+  EXPECT_NEAR(moved["jellyfish"][0]["centroid_m"][1].get<double>() - before[1].get<double>(), 0.05, 2e-3);
+  const auto& swum = timeline_entry(stats, "40 mark swum");
+  EXPECT_TRUE(swum["mirror_symmetry"].get<bool>());
+  EXPECT_NEAR(swum["jellyfish"][0]["centroid_m"][0].get<double>(), before[0].get<double>(), 1e-12);
+  EXPECT_GT(swum["time_s"].get<double>(), moved["time_s"].get<double>());
+}
+
 TEST(Viewer, DraggingAnObstacleMovesIt) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_obstacle");

@@ -95,7 +95,8 @@ class World {
   // ---- Live edits ----
   void set_viscosity(double nu_m2_per_s) { fluid_->set_viscosity(nu_m2_per_s); }
   /// Adds a Gaussian velocity splat Δu·exp(−r²/radius²) to the fluid; the next step's projection
-  /// makes it divergence-free. Call end_mirror_symmetry() first.
+  /// makes it divergence-free. Ends the mirror symmetry, except in an axisymmetric tank, where the
+  /// splat (at a point east of the axis) is a ring.
   void stir(Vec2 at_m, Vec2 delta_velocity_m_per_s, double radius_m);
 
  private:
