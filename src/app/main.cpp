@@ -5,6 +5,7 @@
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/interrupt.hpp"
+#include "jellysim/core/memory.hpp"
 #include "jellysim/io/ib2d_files.hpp"
 #include "jellysim/jellyfish/hoover_miller.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -44,6 +45,26 @@ struct RunOptions {
   std::vector<Shorthand> shorthands;
 };
 
+/// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
+void add_memory_limit_option(CLI::App& cmd) {
+  cmd.add_option_function<std::string>(
+         "--memory-limit",
+         [](const std::string& size) { js::core::set_memory_budget_bytes(js::core::parse_byte_size(size)); },
+         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's); a run estimated to need more "
+         "is refused before it starts")
+      ->type_name("SIZE")
+      ->check(CLI::Validator(
+          [](std::string& size) -> std::string {
+            try {
+              js::core::parse_byte_size(size);
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+            return {};
+          },
+          "SIZE", "memory size"));
+}
+
 /// `set_example` is a working example of --set for this command (the test
 /// Cli.EverySetExampleInTheHelpRuns runs each one).
 void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out, const std::string& set_example) {
@@ -67,6 +88,7 @@ void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_ou
           [](std::string& value) -> std::string { return value.empty() ? "the duration is empty" : std::string(); },
           "S", "duration"));
   cmd.add_flag("--quiet", o.quiet, "No progress display");
+  add_memory_limit_option(cmd);
 }
 
 /// Terminal progress: simulated time, steps and ETA, redrawn at most five times a second.
@@ -227,6 +249,7 @@ void add_view_options(CLI::App& cmd, ViewCommand& v) {
   cmd.add_option("--frames", o.frames, "Quit after this many frames (0: when the window is closed)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd.add_flag("--paused", o.start_paused, "Start paused (space runs, s steps)");
+  add_memory_limit_option(cmd);
   cmd.add_option("--field", v.field, "Fluid quantity shown: vorticity or speed")
       ->capture_default_str()->check(CLI::IsMember({"vorticity", "speed"}));
   cmd.add_option("--script", v.script_path, "File of timed input events (frame, event; see docs/viewer.md)")

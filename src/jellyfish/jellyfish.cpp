@@ -110,6 +110,20 @@ bool polyline_self_intersects(const std::vector<Vec2>& p) {
   return false;
 }
 
+MarkerPlan plan_markers(const JellyfishSpec& s) {
+  MarkerPlan plan;
+  // Segments per side so that neighbouring markers are at most max_spacing apart.
+  const std::vector<Vec2> fine = bell_profile(s.diameter_m, s.height_m, 256);
+  double half_arc = 0.0;
+  for (std::size_t i = 0; i + 1 <= 256; ++i) half_arc += norm(fine[i + 1] - fine[i]);
+  plan.segments_per_side = std::max(static_cast<double>(s.min_segments_per_side), std::ceil(half_arc / s.max_spacing_m));
+  plan.spacing_m = half_arc / plan.segments_per_side;
+  plan.tentacle_points = s.tentacle_length_m > 0 ? std::max(2.0, std::ceil(s.tentacle_length_m / plan.spacing_m)) : 0.0;
+  const double rows = s.model == UmbrellaModel::mesh ? 2.0 : 1.0;
+  plan.markers = rows * (2.0 * plan.segments_per_side + 1.0) + 2.0 * plan.tentacle_points;
+  return plan;
+}
+
 void validate(const JellyfishSpec& s) {
   require(s.diameter_m > 0, "diameter", "(0, inf) m");
   require(s.height_m > 0, "height", "(0, inf) m");
@@ -137,12 +151,12 @@ void validate(const JellyfishSpec& s) {
 Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   validate(spec_);
   const JellyfishSpec& s = spec_;
-  // Segments per side so that neighbouring markers are at most max_spacing apart.
-  const std::vector<Vec2> fine = bell_profile(s.diameter_m, s.height_m, 256);
-  double half_arc = 0.0;
-  for (std::size_t i = 0; i + 1 <= 256; ++i) half_arc += norm(fine[i + 1] - fine[i]);
-  const int m = std::max(s.min_segments_per_side, static_cast<int>(std::ceil(half_arc / s.max_spacing_m)));
-  const double spacing = half_arc / m;
+  const MarkerPlan plan = plan_markers(s);
+  if (plan.markers > kMaxMarkers)
+    throw std::invalid_argument("the jellyfish would need " + std::to_string(plan.markers) + " markers (more than " +
+                                std::to_string(kMaxMarkers) + "): jellyfish.spacing is too small for its size");
+  const int m = static_cast<int>(plan.segments_per_side);
+  const double spacing = plan.spacing_m;
   std::vector<Vec2> profile = bell_profile(s.diameter_m, s.height_m, m);
   for (Vec2& p : profile) p = s.aperture_centre_m + rotated(p, s.tilt_rad);
   const int n = static_cast<int>(profile.size());
@@ -206,7 +220,7 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   controllers_.resize(layout_.muscle_springs.size());
 
   // Tentacles hang from both aperture tips, away from the apex.
-  const int tentacle_points = s.tentacle_length_m > 0 ? std::max(2, static_cast<int>(std::ceil(s.tentacle_length_m / spacing))) : 0;
+  const int tentacle_points = static_cast<int>(plan.tentacle_points);
   const double t_spacing = tentacle_points > 0 ? s.tentacle_length_m / tentacle_points : 0.0;
   const double area_tentacle = s.tentacle_volume_fraction * area_bell;
   const Vec2 down = -initial_axis();

@@ -106,6 +106,37 @@ const JellyfishSpec& SwimSettings::jellyfish() const {
   return school.front();
 }
 
+MemoryEstimate estimate_memory(const SwimSettings& settings) {
+  const coupling::TankSpec& t = settings.tank;
+  MemoryEstimate e;
+  e.cells = static_cast<double>(t.cells_x) * static_cast<double>(t.cells_y);
+  const double spacing = coupling::peskin_spacing(t);
+  for (const JellyfishSpec& j : settings.school) e.markers += plan_markers(j).markers;
+  for (const ObstacleSpec& o : settings.obstacles) {
+    const std::vector<Vec2> outline = obstacle_outline(o);
+    double perimeter = 0.0;
+    for (std::size_t k = 0; k < outline.size(); ++k) perimeter += norm(outline[(k + 1) % outline.size()] - outline[k]);
+    e.markers += 2.0 * (perimeter / spacing + static_cast<double>(outline.size()));  // markers and their targets
+  }
+  for (const Ib2dObjectSpec& st : settings.structures)
+    e.markers += 2.0 * static_cast<double>(st.structure.vertices.size());  // targets add an anchor each, at most
+  e.frames = std::floor(settings.duration_s / settings.frame_interval_s) + 1.0;
+  // Measured (docs/jellyfish.md, "Memory"): 25 MB base; 450 B per cell on the whole tank; the
+  // marker-space solve's R, M and LU, 26 B per entry of a 2N × 2N matrix (plain GMRES keeps a
+  // Krylov basis instead); the recorded frames' slices and metrics. Rounded up.
+  const double unknowns = 2.0 * e.markers;
+  const double dense = settings.coupling.preconditioner == coupling::Preconditioner::mobility
+                           ? 32.0 * unknowns * unknowns
+                           : 8.0 * unknowns * (settings.coupling.krylov_max_iterations + 2.0);
+  const double per_frame = 64.0 * e.markers + 512.0;
+  e.bytes = 32e6 + 600.0 * e.cells + 4096.0 * e.markers + dense + per_frame * e.frames;
+  std::ostringstream b;
+  b.precision(3);
+  b << e.cells << " fluid cells, " << e.markers << " markers, " << e.frames << " frames";
+  e.breakdown = b.str();
+  return e;
+}
+
 void validate_geometry(const SwimSettings& settings) {
   const coupling::TankSpec& t = settings.tank;
   if (t.geometry != fluid::Geometry::axisymmetric) return;

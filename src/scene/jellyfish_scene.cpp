@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/memory.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
 #include "jellysim/io/ib2d_files.hpp"
@@ -457,6 +458,34 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
 /// More recorded frames than a run can write or anyone view (a million at 30 fps is 9 hours).
 constexpr double kMaxFrames = 1e6;
 
+namespace {
+
+/// What can be told before any body is built (issue 23): each jellyfish fits the tank at all (its
+/// diameter, height and tentacles are each at most the tank's diagonal, or no placement fits), and
+/// the run's estimated memory fits the budget (core/memory.hpp).
+void check_size_and_memory(const jellyfish::SwimSettings& s) {
+  const double diagonal = std::hypot(s.tank.width_m, s.tank.height_m);
+  for (std::size_t k = 0; k < s.school.size(); ++k) {
+    const jellyfish::JellyfishSpec& j = s.school[k];
+    const std::pair<const char*, double> sizes[] = {
+        {"diameter", j.diameter_m}, {"height", j.height_m}, {"tentacle_length", j.tentacle_length_m}};
+    for (const auto& [field, value] : sizes)
+      if (value > diagonal)
+        throw InputError("jellyfish " + std::to_string(k + 1) + " cannot fit in the tank: its " + field + " " +
+                         io::format_number(value) + " m exceeds the tank's diagonal " + io::format_number(diagonal) +
+                         " m (field 'jellyfish." + field + "')");
+  }
+  const jellyfish::MemoryEstimate e = jellyfish::estimate_memory(s);
+  const double budget = static_cast<double>(core::memory_budget_bytes());
+  if (!(e.bytes <= budget))
+    throw InputError("the run would need about " + core::format_bytes(e.bytes) + " of memory (" + e.breakdown +
+                     "), more than the budget of " + core::format_bytes(budget) +
+                     " (half of this machine's memory unless --memory-limit sets it): coarsen tank.cells, raise "
+                     "jellyfish.spacing, record fewer frames (output.frame_interval) or raise --memory-limit");
+}
+
+}  // namespace
+
 jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   const Reader r(c, jellyfish_scene());
   r.validate_all();
@@ -530,6 +559,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   s.limits.max_speed_m_per_s = r.number("stability.max_speed");
   s.limits.max_strain = r.number("stability.max_strain");
   s.limits.max_bend_rad = r.number("stability.max_bend_deg") * kDegree;
+  check_size_and_memory(s);  // before validate_layout builds the bodies
   try {
     jellyfish::validate_layout(s);
   } catch (const std::invalid_argument& e) {

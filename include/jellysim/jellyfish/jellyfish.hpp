@@ -156,6 +156,19 @@ class Jellyfish {
 /// Checks the spec; throws std::invalid_argument naming the field and its allowed range.
 void validate(const JellyfishSpec& spec);
 
+/// How many markers the slice of a (validated) spec has, worked out without building it (counts
+/// as doubles: a hostile spec may ask for more than an int holds).
+struct MarkerPlan {
+  double segments_per_side = 0.0;  ///< umbrella springs from the aperture to the apex
+  double spacing_m = 0.0;          ///< their length
+  double tentacle_points = 0.0;    ///< points per tentacle beyond its root
+  double markers = 0.0;            ///< every point of the slice
+};
+MarkerPlan plan_markers(const JellyfishSpec& spec);
+/// A slice with more markers than this is refused (the dense marker-space solve alone would need
+/// (2N)² × 8 bytes several times over).
+inline constexpr double kMaxMarkers = 1e6;
+
 /// Points along the half-ellipse subumbrellar profile (aperture tips at ±D/2, apex at height H),
 /// evenly spaced in arc length, left tip first; before tilt and translation.
 std::vector<Vec2> bell_profile(double diameter_m, double height_m, int segments_per_side);

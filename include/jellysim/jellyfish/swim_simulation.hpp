@@ -143,6 +143,19 @@ class SwimSimulation {
   std::vector<int> jellyfish_mirror_;  ///< per jellyfish, the one that is its mirror image
 };
 
+/// What a swim simulation will allocate, worked out from its settings before anything is built
+/// (issue 23). Measured on this machine's Release build (docs/jellyfish.md, "Memory"): about 25 MB
+/// for the program, 200 B per fluid cell on the half tank and 450 on the whole one, and the
+/// marker-space solve's dense matrices, about 26 B per entry of a 2N × 2N matrix.
+struct MemoryEstimate {
+  double cells = 0.0;    ///< fluid cells of the whole tank
+  double markers = 0.0;  ///< every body's points (targets included)
+  double frames = 0.0;   ///< recorded frames
+  double bytes = 0.0;    ///< the estimate (an upper bound with a margin)
+  std::string breakdown; ///< "cells …, markers …, frames …": what drives it
+};
+MemoryEstimate estimate_memory(const SwimSettings& settings);
+
 /// Checks what an axisymmetric tank needs (coupling::TankSpec::geometry): jellyfish on the axis, no
 /// planar obstacles, an even cell count, settings the axisymmetric solvers have; throws
 /// std::invalid_argument saying which. Nothing for planar tanks.
