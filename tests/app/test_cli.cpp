@@ -104,6 +104,11 @@ TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
       {"--set output.frame_interval=1e-9", "output.frame_interval"},
       {"--set output.frame_interval=1e-7 --duration 0.01", "coupling.min_dt"},
       {"/dev/zero", "not a regular file"},  // read until memory ran out
+      // Memory (issue 23): estimated from the settings before anything is allocated.
+      {"--set jellyfish.spacing=1e-9", "of memory"},           // grew to 16.7 GB
+      {"--set jellyfish.height=280000", "cannot fit in the tank"},  // std::bad_alloc building the markers
+      {"--memory-limit 100M --set 'tank.cells=[1024, 1024]'", "budget of 100 MiB"},
+      {"--memory-limit 12Q", "not a size"},
   };
   for (const auto& [args, named] : cases) {
     const Result r = run_cli("simulate --quiet --out " + dir.string() + " " + args);  // '…' keeps the line break

@@ -1,0 +1,41 @@
+// The memory budget's sizes (issue 23, core/memory.hpp).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "jellysim/core/memory.hpp"
+
+namespace jellysim::core {
+namespace {
+
+TEST(MemoryBudget, ParsesSizesWithBinaryUnits) {
+  EXPECT_EQ(parse_byte_size("1000000"), 1000000u);
+  EXPECT_EQ(parse_byte_size("800k"), 800u * 1024u);
+  EXPECT_EQ(parse_byte_size("512M"), 512ull << 20);
+  EXPECT_EQ(parse_byte_size("4G"), 4ull << 30);
+  EXPECT_EQ(parse_byte_size("1.5GiB"), 3ull << 29);
+  EXPECT_EQ(parse_byte_size("2TB"), 2ull << 40);
+  for (const char* bad : {"", "G", "-1G", "0", "12Q", "nan", "inf", "1e30", "4 G"})
+    EXPECT_THROW(parse_byte_size(bad), std::invalid_argument) << bad;
+}
+
+TEST(MemoryBudget, DefaultsToHalfThePhysicalMemoryAndCanBeSet) {
+  set_memory_budget_bytes(0);
+  const std::uint64_t physical = physical_memory_bytes();
+  ASSERT_GT(physical, 0u);
+  EXPECT_EQ(memory_budget_bytes(), physical / 2);
+  set_memory_budget_bytes(123456789);
+  EXPECT_EQ(memory_budget_bytes(), 123456789u);
+  set_memory_budget_bytes(0);
+  EXPECT_EQ(memory_budget_bytes(), physical / 2);
+}
+
+TEST(MemoryBudget, FormatsBytes) {
+  EXPECT_EQ(format_bytes(512), "512 B");
+  EXPECT_EQ(format_bytes(1536), "1.5 KiB");
+  EXPECT_EQ(format_bytes(100.0 * 1024 * 1024), "100 MiB");
+  EXPECT_EQ(format_bytes(3.2e9), "2.98 GiB");
+}
+
+}  // namespace
+}  // namespace jellysim::core
