@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "jellysim/elastic/forces.hpp"
+#include "jellysim/jellyfish/segment_sweep.hpp"
 
 namespace jellysim::jellyfish {
 
@@ -99,15 +100,15 @@ std::vector<int> make_rings(elastic::Body& body, double axis_x, double spacing, 
 }
 
 bool polyline_self_intersects(const std::vector<Vec2>& p) {
-  auto crosses = [](Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  auto crosses = [](const Segment& s, const Segment& t) {
+    const Vec2 a = s[0], b = s[1], c = t[0], d = t[1];
     const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
     const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
     return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
   };
-  for (std::size_t i = 0; i + 1 < p.size(); ++i)
-    for (std::size_t j = i + 2; j + 1 < p.size(); ++j)
-      if (crosses(p[i], p[i + 1], p[j], p[j + 1])) return true;
-  return false;
+  std::vector<Segment> segments;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) segments.push_back({p[i], p[i + 1]});
+  return any_pair_crosses(segments, crosses, [](std::size_t i, std::size_t j) { return j == i + 1; });
 }
 
 MarkerPlan plan_markers(const JellyfishSpec& s) {

@@ -1,5 +1,7 @@
 #include "jellysim/jellyfish/obstacle.hpp"
 
+#include "jellysim/jellyfish/segment_sweep.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -19,14 +21,19 @@ bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
 }
 
+/// The closed polygon's edges, edge i from vertex i to vertex i + 1 (the last one closing it).
+std::vector<Segment> edges(const std::vector<Vec2>& p) {
+  std::vector<Segment> e(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) e[i] = {p[i], p[(i + 1) % p.size()]};
+  return e;
+}
+
 bool polygon_self_intersects(const std::vector<Vec2>& p) {
   const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j + 1 == n) continue;  // the closing edge meets the first one at a vertex
-      if (segments_cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return true;
-    }
-  return false;
+  return any_pair_crosses(
+      edges(p), [](const Segment& a, const Segment& b) { return segments_cross(a[0], a[1], b[0], b[1]); },
+      // Neighbouring edges meet at their shared vertex; the closing edge neighbours the first.
+      [n](std::size_t i, std::size_t j) { return j == i + 1 || (i == 0 && j + 1 == n); });
 }
 
 }  // namespace
@@ -61,9 +68,14 @@ bool point_in_polygon(Vec2 q, const std::vector<Vec2>& p) {
 }
 
 bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j)
-      if (segments_cross(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()])) return true;
+  std::vector<Segment> both = edges(a);
+  const std::vector<Segment> eb = edges(b);
+  both.insert(both.end(), eb.begin(), eb.end());
+  const std::size_t na = a.size();
+  if (any_pair_crosses(
+          both, [](const Segment& p, const Segment& q) { return segments_cross(p[0], p[1], q[0], q[1]); },
+          [na](std::size_t i, std::size_t j) { return (i < na) == (j < na); }))  // only an edge of each
+    return true;
   return (!a.empty() && point_in_polygon(a.front(), b)) || (!b.empty() && point_in_polygon(b.front(), a));
 }
 

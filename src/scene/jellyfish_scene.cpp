@@ -230,7 +230,8 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
 }
 
 /// Limits of a polygon file: a few MiB of text and 10,000 vertices are far beyond any obstacle
-/// outline, and the polygon checks are quadratic in the vertex count.
+/// outline (the markers resample it at half a cell); the polygon checks sort and sweep
+/// (jellyfish/segment_sweep.hpp: a 50,000-vertex outline in milliseconds).
 constexpr std::uintmax_t kMaxPolygonFileBytes = 4u << 20;
 constexpr std::size_t kMaxPolygonVertices = 10000;
 
