@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -155,8 +156,6 @@ void validate_geometry(const SwimSettings& settings) {
       refuse("jellyfish " + std::to_string(k + 1) + " is a body of revolution about the axis: its position x = " +
              std::to_string(j.aperture_centre_m.x) + " m must be the tank's centre line, " + std::to_string(axis) + " m");
   }
-  if (!settings.obstacles.empty())
-    refuse("obstacles are planar (forces per metre of depth) and not supported in axisymmetric tanks yet");
   if (!settings.structures.empty())
     refuse("IB2d structures are planar and not supported in axisymmetric tanks");
 }
@@ -219,6 +218,7 @@ SwimSimulation::SwimSimulation(const SwimSettings& settings) : settings_(setting
   for (const ObstacleSpec& o : settings_.obstacles) {
     validate(o);
     obstacles_.push_back(add_obstacle(o, spacing, *body));
+    if (settings_.tank.geometry == fluid::Geometry::axisymmetric) make_ring_tethers(obstacles_.back(), spacing, *body);
   }
   // IB2d structures get the marker spacing IB2d's driver uses: half the smaller cell size.
   for (const Ib2dObjectSpec& st : settings_.structures) {
@@ -302,7 +302,25 @@ std::vector<Vec2> SwimSimulation::obstacle_outline(std::size_t i) const {
   return p;
 }
 
-Vec2 SwimSimulation::obstacle_force(std::size_t i) const { return obstacle_fluid_force(obstacles_.at(i), body()); }
+void SwimSimulation::make_ring_tethers(const ObstacleParts& parts, double spacing, elastic::Body& body) const {
+  // Each marker is a ring (a body of revolution's outline, e.g. a sphere on the axis): its tether
+  // holds the whole ring, 2π r times the planar tether per metre of depth (r at least a quarter of
+  // the spacing for markers on the axis, as the ring jellyfish's elements).
+  const double axis = 0.5 * settings_.tank.width_m;
+  for (std::size_t k = 0; k < parts.markers.size(); ++k) {
+    const double r = std::abs(body.points.position[static_cast<std::size_t>(parts.markers[k])].x - axis);
+    body.linear.stiffness[static_cast<std::size_t>(parts.tethers[k])] *= 2.0 * std::numbers::pi * std::max(r, 0.25 * spacing);
+  }
+}
+
+Vec2 SwimSimulation::obstacle_force(std::size_t i) const {
+  const Vec2 f = obstacle_fluid_force(obstacles_.at(i), body());
+  // Axisymmetric: the outline holds each ring twice (east and west), the points on the axis once,
+  // and the coupling spreads half of the force on those (ImmersedBoundary::spread): the body of
+  // revolution's force is half the sum. Along the axis only (the radial parts cancel).
+  if (world_->axisymmetric()) return {0.0, 0.5 * f.y};
+  return f;
+}
 
 double SwimSimulation::obstacle_leakage(std::size_t i) const {
   const ObstacleParts& parts = obstacles_.at(i);
@@ -317,7 +335,9 @@ double SwimSimulation::obstacle_leakage(std::size_t i) const {
     const Vec2 wall_velocity = 0.5 * (v[a] + v[b]);
     const Vec2 normal_times_length{x[b].y - x[a].y, x[a].x - x[b].x};  // outward for a counter-clockwise outline
     const Vec2 relative = Vec2{u.u.sample(mid), u.v.sample(mid)} - wall_velocity;
-    crossing += std::abs(dot(relative, normal_times_length));
+    // Axisymmetric: each element is a band of circumference 2π r, and appears twice (both halves).
+    const double weight = world_->axisymmetric() ? std::numbers::pi * std::abs(mid.x - 0.5 * settings_.tank.width_m) : 1.0;
+    crossing += weight * std::abs(dot(relative, normal_times_length));
   }
   return 0.5 * crossing;
 }

@@ -566,10 +566,14 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("scene layout: ") + e.what());
   }
-  if (t.symmetry == coupling::MirrorSymmetry::mirror)
-    if (const std::string problem = jellyfish::mirror_symmetry_problem(s); !problem.empty())
+  if (t.symmetry == coupling::MirrorSymmetry::mirror || t.geometry == fluid::Geometry::axisymmetric)
+    if (const std::string problem = jellyfish::mirror_symmetry_problem(s); !problem.empty()) {
+      if (t.geometry == fluid::Geometry::axisymmetric)
+        throw InputError("field 'tank.geometry' is \"axisymmetric\", but the scene is not the slice of a body of "
+                         "revolution (its own mirror image about the centre line): " + problem);
       throw InputError("field 'tank.symmetry' is \"mirror\", but the scene is not its own mirror image about the "
                        "tank's centre line: " + problem + " (use \"auto\" or \"none\")");
+    }
   return s;
 }
 

@@ -79,10 +79,12 @@ class SwimSimulation {
   std::size_t obstacle_count() const { return obstacles_.size(); }
   /// The obstacle's outline markers as they are now (counter-clockwise, closed implicitly).
   std::vector<Vec2> obstacle_outline(std::size_t i) const;
-  /// Force of the fluid on the obstacle, N per metre of depth (drag and lift).
+  /// Force of the fluid on the obstacle, N per metre of depth (drag and lift); in an axisymmetric
+  /// tank the force on the body of revolution (N, along the axis).
   Vec2 obstacle_force(std::size_t i) const;
   /// Volume of fluid crossing the obstacle's outline per second and metre of depth (m²/s),
-  /// relative to the outline's own motion: ½∮|(u − u_outline)·n| ds. Zero for a perfect wall.
+  /// relative to the outline's own motion: ½∮|(u − u_outline)·n| ds. Zero for a perfect wall. In
+  /// an axisymmetric tank through the surface of revolution (m³/s).
   double obstacle_leakage(std::size_t i) const;
   std::size_t structure_count() const { return structures_.size(); }
   /// Where IB2d structure i's markers, springs and targets are in body().
@@ -123,6 +125,8 @@ class SwimSimulation {
   void move_obstacle(std::size_t obstacle, Vec2 delta_m);
 
  private:
+  /// Axisymmetric tanks: scales an obstacle's tethers to hold whole rings.
+  void make_ring_tethers(const ObstacleParts& parts, double spacing, elastic::Body& body) const;
   /// One coupled step of exactly dt_s (at most the stable step), then the checks.
   SwimStep advance(double dt_s);
   /// Why the scene is not its own mirror image (coupling::TankSpec::symmetry), "" when it is; on success
