@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine: installs what is missing (apt-get), builds, then
 #   scripts/jellysim.sh run [jellysim run options]   runs the main job on the built-in default scene
-#   scripts/jellysim.sh test                         runs the whole test suite (Release, then ASan+UBSan)
+#   scripts/jellysim.sh test                         runs the whole test suite (Release, then ASan+UBSan
+#                                                    with clang, a short libFuzzer run included)
 #   scripts/jellysim.sh build                        only installs and builds
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,7 +10,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(build-essential cmake pkg-config libeigen3-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev libplplot-dev plplot-driver-cairo fonts-dejavu-core
           libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev zlib1g-dev libstb-dev ffmpeg
-          libglfw3-dev libimgui-dev xvfb xauth libfftw3-dev)
+          libglfw3-dev libimgui-dev xvfb xauth libfftw3-dev clang libclang-rt-14-dev)
 JOBS=$(nproc 2>/dev/null || echo 2)
 
 install_missing_packages() {
@@ -39,8 +40,14 @@ build() {
 }
 
 build_release() { build build/release -DCMAKE_BUILD_TYPE=Release; }
+# The sanitizer pass is built with clang, which also builds the libFuzzer target (fuzz/): a cache
+# made by another compiler is started afresh.
 build_sanitized() {
-  build build/sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DJELLYSIM_SANITIZE=ON
+  if [ -f build/sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/sanitize/CMakeCache.txt; then
+    rm -rf build/sanitize
+  fi
+  CC=clang CXX=clang++ build build/sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
+    -DJELLYSIM_SANITIZE=ON -DJELLYSIM_FUZZ=ON
 }
 
 command=${1:-run}
@@ -58,7 +65,7 @@ case "$command" in
     build_sanitized
     # Long physics studies (test names containing "Slow", e.g. ten swimming cycles) run in the Release
     # pass only: under the sanitizers they would take tens of minutes and add no memory coverage.
-    echo "== tests (AddressSanitizer + UndefinedBehaviorSanitizer; *Slow* tests in Release only) =="
+    echo "== tests (clang, AddressSanitizer + UndefinedBehaviorSanitizer, the fuzzer; *Slow* tests in Release only) =="
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
       ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 -E Slow ;;

@@ -149,6 +149,29 @@ AxisImages axis_images(const Axis& a, bool normal, int i) {
 
 }  // namespace
 
+/// An image of a contiguous run of samples along one axis: sample k of the run maps to
+/// start + step·k on the torus, with a sign.
+struct ImageRun {
+  int start = 0, step = 1;
+  double sign = 1.0;
+};
+
+struct MobilityMatrix::Transfer {
+  struct Source {
+    int i, j;
+    double w;
+  };
+  FaceTerms read;               ///< faces interpolation reads
+  std::vector<Source> sources;  ///< torus sources of spreading: spread faces' images, weight × sign
+  /// Reading and spreading use one tensor-product stencil of interior faces (the marker is away
+  /// from the sides): entries then follow from 1D correlations of the weights (the fast path).
+  bool separable = false;
+  int width = 0, i0 = 0, j0 = 0;
+  double wx[4] = {0, 0, 0, 0}, wy[4] = {0, 0, 0, 0};
+  ImageRun x_images[4], y_images[4];
+  int x_image_count = 0, y_image_count = 0;
+};
+
 FaceTerms interpolation_terms(const TransferGeometry& g, Vec2 p, int component) {
   const Axis ax = x_axis(g), ay = y_axis(g);
   const Vec2 f = sample_coordinates(g.grid, p, component);
@@ -253,29 +276,6 @@ double MobilityMatrix::response(int c_to, int i_to, int j_to, int c_from, int i_
   for (const Image& im : images) sum += im.sign * table(c_to, c_from, i_to - im.i, j_to - im.j);
   return sum;
 }
-
-/// An image of a contiguous run of samples along one axis: sample k of the run maps to
-/// start + step·k on the torus, with a sign.
-struct ImageRun {
-  int start = 0, step = 1;
-  double sign = 1.0;
-};
-
-struct MobilityMatrix::Transfer {
-  struct Source {
-    int i, j;
-    double w;
-  };
-  FaceTerms read;               ///< faces interpolation reads
-  std::vector<Source> sources;  ///< torus sources of spreading: spread faces' images, weight × sign
-  /// Reading and spreading use one tensor-product stencil of interior faces (the marker is away
-  /// from the sides): entries then follow from 1D correlations of the weights (the fast path).
-  bool separable = false;
-  int width = 0, i0 = 0, j0 = 0;
-  double wx[4] = {0, 0, 0, 0}, wy[4] = {0, 0, 0, 0};
-  ImageRun x_images[4], y_images[4];
-  int x_image_count = 0, y_image_count = 0;
-};
 
 namespace {
 

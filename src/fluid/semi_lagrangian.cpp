@@ -441,7 +441,6 @@ void for_interior_rows(const MacGrid& g, const Boundaries& b, Fn&& fn) {
 }
 
 inline Field& component(Velocity& v, int c) { return c == 0 ? v.u : v.v; }
-inline const Field& component(const Velocity& v, int c) { return c == 0 ? v.u : v.v; }
 
 struct HelmholtzCoefficients {
   double cx, cy, centre;
