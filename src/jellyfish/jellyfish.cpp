@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "jellysim/elastic/forces.hpp"
@@ -153,9 +154,13 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   validate(spec_);
   const JellyfishSpec& s = spec_;
   const MarkerPlan plan = plan_markers(s);
-  if (plan.markers > kMaxMarkers)
-    throw std::invalid_argument("the jellyfish would need " + std::to_string(plan.markers) + " markers (more than " +
-                                std::to_string(kMaxMarkers) + "): jellyfish.spacing is too small for its size");
+  if (!(plan.markers <= kMaxMarkers)) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "the jellyfish would need " << plan.markers << " markers (at most " << kMaxMarkers
+        << "): jellyfish.spacing is too small for its size";
+    throw std::invalid_argument(why.str());
+  }
   const int m = static_cast<int>(plan.segments_per_side);
   const double spacing = plan.spacing_m;
   std::vector<Vec2> profile = bell_profile(s.diameter_m, s.height_m, m);
