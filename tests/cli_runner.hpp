@@ -1,13 +1,19 @@
 #pragma once
 // Shared by the end-to-end tests of the command line: run `jellysim ARGS`, read files back, and
-// make a fresh scratch directory. JELLYSIM_CLI_PATH is defined by tests/CMakeLists.txt.
+// make a fresh scratch directory, start it in the background (signal and checkpoint tests). JELLYSIM_CLI_PATH is defined by tests/CMakeLists.txt.
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+
+extern char** environ;
 
 namespace jellysim::testing {
 
@@ -41,6 +47,23 @@ inline std::filesystem::path fresh_scratch_dir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("jellysim_test_" + name);
   std::filesystem::remove_all(dir);
   return dir;
+}
+
+/// Starts jellysim with `args` (no shell, output discarded) and returns its pid, or -1.
+inline pid_t spawn_jellysim(const std::vector<std::string>& args) {
+  std::vector<std::string> all{JELLYSIM_CLI_PATH};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
 }
 
 }  // namespace jellysim::testing

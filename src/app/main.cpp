@@ -6,6 +6,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/interrupt.hpp"
 #include "jellysim/core/memory.hpp"
+#include "jellysim/io/checkpoint.hpp"
 #include "jellysim/io/ib2d_files.hpp"
 #include "jellysim/jellyfish/hoover_miller.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -18,6 +19,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <iostream>
@@ -43,6 +47,9 @@ struct RunOptions {
     std::string option, key, value;
   };
   std::vector<Shorthand> shorthands;
+  /// `simulate --checkpoint-every` / `--resume` (null: none); with `resume`, out is the run's directory.
+  std::shared_ptr<const js::experiments::Checkpointing> checkpoints{};
+  bool resume = false;
 };
 
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
@@ -114,7 +121,7 @@ js::sim::ProgressCallback make_progress(bool enabled) {
 /// then creates the output directory and runs.
 int run_experiment(const js::experiments::Experiment& e, const std::optional<js::io::Config>& scene_file,
                    const RunOptions& o) {
-  js::experiments::Context ctx{js::experiments::default_config(e), make_progress(!o.quiet)};
+  js::experiments::Context ctx{js::experiments::default_config(e), make_progress(!o.quiet), o.checkpoints};
   if (scene_file) ctx.config.merge(*scene_file);
   for (const std::string& s : o.sets) {
     const std::string key = s.substr(0, s.find('='));
@@ -133,12 +140,17 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
     ctx.config.set(key + "=" + value);
   }
   auto run = e.prepare(ctx);
-  const js::io::OutputDir out = js::io::OutputDir::for_run(o.out, e.name);
+  const js::io::OutputDir out =
+      o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
   js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
   const js::experiments::Outcome outcome = run(out);
   out.finish_manifest();
+  const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
+  const std::string resume_hint =
+      resumable ? "  (continue it with: jellysim simulate --resume " + out.path().string() + ")\n" : "";
   if (const int signal = js::core::interrupt_signal(); signal != 0 && !outcome.failure.empty()) {
-    std::cerr << "jellysim: " << outcome.failure << "; results so far are in " << out.path().string() << "\n";
+    std::cerr << "jellysim: " << outcome.failure << "; results so far are in " << out.path().string() << "\n"
+              << resume_hint;
     return 128 + signal;
   }
   if (!outcome.failure.empty()) {
@@ -148,6 +160,48 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   }
   if (!o.quiet) std::cout << e.name << ": results in " << out.path().string() << "\n";
   return 0;
+}
+
+/// `jellysim simulate --checkpoint-every S`: the configuration as it was given (scene text, --set,
+/// --duration) travels in each checkpoint, so that --resume resolves it again exactly.
+int run_checkpointed_simulation(const std::string& scene_path, RunOptions o, double every_s) {
+  auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
+  js::io::Checkpoint& how = checkpoints->how;
+  how.command = "simulate";
+  how.every_s = every_s;
+  how.sets = o.sets;
+  if (o.duration) how.duration = js::io::format_double(*o.duration);
+  std::optional<js::io::Config> scene;
+  if (!scene_path.empty()) {
+    how.scene_text = js::io::Config::read_scene_text(scene_path);
+    how.scene_source = scene_path;
+    scene = js::io::Config::parse(how.scene_text, scene_path);
+    if (!scene->has("scene") || scene->string("scene") != "jellyfish")
+      throw js::InputError("--checkpoint-every: " + scene_path + " is not a jellyfish scene (scene = \"jellyfish\"); "
+                           "only jellyfish simulations write checkpoints");
+  }
+  o.checkpoints = std::move(checkpoints);
+  return run_experiment(js::experiments::find_experiment("jellyfish"), scene, o);
+}
+
+/// `jellysim simulate --resume DIR`: continues the run whose checkpoint is in DIR, into DIR.
+int resume_simulation(const std::string& dir, bool quiet) {
+  js::io::Checkpoint c = js::io::read_checkpoint(dir);
+  if (c.command != "simulate")
+    throw js::InputError("--resume '" + dir + "': the checkpoint is of `jellysim " + c.command + "`, not `simulate`");
+  RunOptions o;
+  o.out = dir;
+  o.quiet = quiet;
+  o.sets = c.sets;
+  if (!c.duration.empty()) o.duration = std::strtod(c.duration.c_str(), nullptr);  // written by format_double: exact
+  o.resume = true;
+  std::optional<js::io::Config> scene;
+  if (!c.scene_text.empty()) scene = js::io::Config::parse(c.scene_text, c.scene_source);
+  auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
+  checkpoints->resume = std::move(c.state);
+  checkpoints->how = std::move(c);
+  o.checkpoints = std::move(checkpoints);
+  return run_experiment(js::experiments::find_experiment("jellyfish"), scene, o);
 }
 
 int run_scene(const std::string& scene_path, const RunOptions& o, const std::string& default_scene) {
@@ -317,6 +371,23 @@ int main(int argc, char** argv) {
   simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
   add_run_options(*simulate, sim_opts, "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false");
+  double checkpoint_every = 0.0;
+  std::string resume_dir;
+  auto* checkpoint_option =
+      simulate->add_option("--checkpoint-every", checkpoint_every,
+                           "Write the whole state to OUT/checkpoint.jellysim at the first frame after every S simulated "
+                           "seconds, (0, 1e9]; a killed run continues with --resume OUT (removed when the run completes)")
+          ->type_name("S")
+          ->check(CLI::Range(1e-9, 1e9));
+  simulate->add_option("--resume", resume_dir,
+                       "Continue the run whose checkpoint is in DIR, into DIR, as it was configured (no scene, --set, "
+                       "--duration or --out): the outputs are those of the uninterrupted run, byte for byte")
+      ->type_name("DIR")
+      ->excludes(checkpoint_option)
+      ->excludes("scene")
+      ->excludes("--set")
+      ->excludes("--duration")
+      ->excludes("--out");
 
   RunOptions sweep_opts;
   std::string sweep_scene_path;
@@ -381,7 +452,11 @@ int main(int argc, char** argv) {
   }
   try {
     if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
-    if (simulate->parsed()) return run_scene(sim_scene_path, sim_opts, "jellyfish");
+    if (simulate->parsed()) {
+      if (!resume_dir.empty()) return resume_simulation(resume_dir, sim_opts.quiet);
+      if (checkpoint_every > 0) return run_checkpointed_simulation(sim_scene_path, sim_opts, checkpoint_every);
+      return run_scene(sim_scene_path, sim_opts, "jellyfish");
+    }
     if (view->parsed()) return run_view(view_cmd);
     if (ib2d->parsed()) return write_hoover_miller_files(hm_resolution, hm_stem);
     if (sweep->parsed()) {

@@ -166,7 +166,9 @@ Config Config::parse(std::string_view text, const std::string& source) {
   return c;
 }
 
-Config Config::load(const std::filesystem::path& path) {
+Config Config::load(const std::filesystem::path& path) { return parse(read_scene_text(path), path.string()); }
+
+std::string Config::read_scene_text(const std::filesystem::path& path) {
   // A scene is a small regular file: refuse devices (/dev/zero never ends), directories and
   // anything above kMaxSceneFileBytes before reading.
   std::error_code ec;
@@ -183,7 +185,7 @@ Config Config::load(const std::filesystem::path& path) {
   if (!in) throw InputError("cannot read scene file '" + path.string() + "'");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse(text.str(), path.string());
+  return text.str();
 }
 
 void Config::merge(const Config& overlay) {

@@ -1,11 +1,13 @@
 #include "jellysim/coupling/immersed_boundary.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/elastic/spring_assembly.hpp"
 #include "jellysim/fluid/projection.hpp"
 
@@ -120,6 +122,42 @@ void ImmersedBoundary::continue_from(const ImmersedBoundary& earlier) {
   time_s_ = earlier.time_s_;
   steps_ = earlier.steps_;
   last_increment_ = earlier.last_increment_;
+}
+
+namespace {
+
+/// A dense matrix whose shape is part of the state.
+void archive_matrix(core::StateArchive& a, std::string_view name, Eigen::MatrixXd& m) {
+  const core::StateArchive::Scope scope(a, name);
+  std::array<Eigen::Index, 2> shape{m.rows(), m.cols()};
+  a.value("shape", shape);
+  if (a.is_restoring()) m.resize(shape[0], shape[1]);
+  a.values("values", std::span<double>(m.data(), static_cast<std::size_t>(m.size())));
+}
+
+}  // namespace
+
+void ImmersedBoundary::archive(core::StateArchive& a) {
+  const core::StateArchive::Scope scope(a, "coupling");
+  a.value("time", time_s_);
+  a.value("steps", steps_);
+  Eigen::MatrixXd increment = last_increment_;
+  archive_matrix(a, "last_increment", increment);
+  if (a.is_restoring()) last_increment_ = increment;
+  {
+    const core::StateArchive::Scope projection(a, "projector");
+    projector_.archive(a);
+  }
+  // The response projections start from the last one's pressure (an iterative pressure solver's
+  // first guess).
+  fluid::archive(a, "response_pressure", scratch_.pressure);
+  if (settings_.mobility_rebuild_cells > 0.0) {
+    // R is reused until a marker has moved far enough: the restored run must reuse the same R.
+    // (Rebuilt every step otherwise: nothing to keep.)
+    a.vector("mobility_points", mobility_points_);
+    archive_matrix(a, "mobility", mobility_matrix_);
+    archive_matrix(a, "reduced_mobility", reduced_mobility_);
+  }
 }
 
 void ImmersedBoundary::set_mirror_symmetry(std::vector<int> partners) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/elastic/mirror.hpp"
 #include "jellysim/fluid/mirror.hpp"
 
@@ -112,6 +113,40 @@ void World::leave_half_tank() {
   half_tank_ = false;
   coupling_ = make_coupling(false);
   coupling_->continue_from(*previous);
+}
+
+namespace {
+
+/// What a run changes in a body: the points' motion and the springs that muscles, steering and
+/// live edits actuate. The topology is the scene's (rebuilt from it).
+void archive_body(core::StateArchive& a, elastic::Body& b) {
+  const core::StateArchive::Scope scope(a, "body");
+  a.values("position", std::span(b.points.position));
+  a.values("velocity", std::span(b.points.velocity));
+  a.values("linear.stiffness", std::span(b.linear.stiffness));
+  a.values("linear.rest_length", std::span(b.linear.rest_length));
+  a.values("angular.stiffness", std::span(b.angular.stiffness));
+  a.values("angular.rest_angle", std::span(b.angular.rest_angle));
+  a.values("torsional.curvature", std::span(b.torsional.curvature));
+  a.values("non_invariant.curvature", std::span(b.non_invariant.curvature));
+  a.values("power.rest_length", std::span(b.power.rest_length));
+}
+
+}  // namespace
+
+void World::archive(core::StateArchive& a) {
+  const core::StateArchive::Scope scope(a, "world");
+  bool mirror = mirror_active_;
+  a.value("mirror_symmetric", mirror);
+  if (a.is_restoring() && mirror != mirror_active_) {
+    if (mirror) throw core::StateMismatch("the checkpoint keeps a mirror symmetry this scene does not have");
+    end_mirror_symmetry();  // a live edit had ended it
+  }
+  archive_body(a, *body_);
+  fluid_->archive(a);
+  coupling_->archive(a);
+  a.vector("tracers", tracers_.positions());
+  unfolded_step_ = -1;  // flow() of the half tank is unfolded anew
 }
 
 void World::end_mirror_symmetry() {

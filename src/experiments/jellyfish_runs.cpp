@@ -71,13 +71,10 @@ class FrameFiles {
   void write(const jellyfish::SwimSimulation& sim, std::size_t index) {
     const std::string id = frame_id(index);
     if (options_.vtk) {
-      const std::string field = "field_" + id + ".vti", tracers = "tracers_" + id + ".vtp", body = "body_" + id + ".vtp";
-      write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, sim.flow()); });
-      write_via_temporary(frames_, tracers, [&](const auto& p) { io::write_polydata_vtp(p, tracer_data(sim)); });
-      write_via_temporary(frames_, body, [&](const auto& p) { io::write_polydata_vtp(p, body_data(sim)); });
-      entries_.push_back({sim.time_s(), "frames/" + field, 0, "field"});
-      entries_.push_back({sim.time_s(), "frames/" + tracers, 1, "tracers"});
-      entries_.push_back({sim.time_s(), "frames/" + body, 2, "body"});
+      write_via_temporary(frames_, field_file(id), [&](const auto& p) { io::write_flow_vti(p, sim.flow()); });
+      write_via_temporary(frames_, tracers_file(id), [&](const auto& p) { io::write_polydata_vtp(p, tracer_data(sim)); });
+      write_via_temporary(frames_, body_file(id), [&](const auto& p) { io::write_polydata_vtp(p, body_data(sim)); });
+      add_pvd_entries(sim.time_s(), id);
       write_via_temporary(out_, "jellyfish.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
     }
     if (options_.pictures && index % static_cast<std::size_t>(options_.picture_every) == 0) {
@@ -89,12 +86,66 @@ class FrameFiles {
     }
   }
 
+  /// A run resumed from a checkpoint: the frames written before it are in the .pvd collection.
+  void continue_after(const std::vector<double>& frame_times) {
+    if (!options_.vtk) return;
+    for (std::size_t k = 0; k < frame_times.size(); ++k) add_pvd_entries(frame_times[k], frame_id(k));
+  }
+
  private:
+  static std::string field_file(const std::string& id) { return "field_" + id + ".vti"; }
+  static std::string tracers_file(const std::string& id) { return "tracers_" + id + ".vtp"; }
+  static std::string body_file(const std::string& id) { return "body_" + id + ".vtp"; }
+  void add_pvd_entries(double t, const std::string& id) {
+    entries_.push_back({t, "frames/" + field_file(id), 0, "field"});
+    entries_.push_back({t, "frames/" + tracers_file(id), 1, "tracers"});
+    entries_.push_back({t, "frames/" + body_file(id), 2, "body"});
+  }
+
   const io::OutputDir& out_;
   io::OutputDir frames_;
   SwimOutputOptions options_;
   std::vector<io::PvdEntry> entries_;
 };
+
+/// Recorded slice frames in a checkpoint (both directions).
+void archive_frames(core::StateArchive& a, const std::string& name, std::vector<jellyfish::SliceFrame>& frames) {
+  const core::StateArchive::Scope scope(a, name);
+  std::size_t count = frames.size();
+  a.value("count", count);
+  if (a.is_restoring()) {
+    if (count > a.entries().size()) throw core::StateMismatch("checkpoint entry '" + name + ".count' is damaged");
+    frames.assign(count, {});
+  }
+  for (std::size_t f = 0; f < count; ++f) {
+    const core::StateArchive::Scope frame(a, std::to_string(f));
+    jellyfish::SliceFrame& s = frames[f];
+    a.value("time", s.time_s);
+    a.vector("umbrella", s.umbrella);
+    a.nested("tentacles", s.tentacles);
+    a.vector("muscles", s.muscles);
+    a.value("thickness", s.thickness_m);
+    a.value("axis", s.axis);
+  }
+}
+
+/// What run_swim has recorded so far, in a checkpoint (both directions; metrics and stats are
+/// computed at the end).
+void archive_recording(core::StateArchive& a, SwimRecording& rec) {
+  const core::StateArchive::Scope scope(a, "recording");
+  a.vector("frame_times", rec.frame_times);
+  archive_frames(a, "frames", rec.frames);
+  for (std::size_t k = 0; k < rec.others.size(); ++k) archive_frames(a, "jellyfish_" + std::to_string(k + 2), rec.others[k]);
+  a.nested("obstacle_forces", rec.obstacle_forces);
+  if (a.is_restoring()) rec.obstacle_outlines.resize(rec.obstacle_forces.size());
+  for (std::size_t f = 0; f < rec.obstacle_outlines.size(); ++f)
+    a.nested("obstacle_outlines_" + std::to_string(f), rec.obstacle_outlines[f]);
+  a.nested("structure_centroids", rec.structure_centroids);
+  a.nested("tracers", rec.tracers);
+}
+
+/// When the next checkpoint is due: the first multiple of `every` after t.
+double next_checkpoint_time(double t, double every) { return (std::floor(t / every + 1e-9) + 1.0) * every; }
 
 }  // namespace
 
@@ -160,7 +211,8 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
 }
 
 SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
-                       const io::OutputDir* out, const sim::ProgressCallback& progress) {
+                       const io::OutputDir* out, const sim::ProgressCallback& progress,
+                       const Checkpointing* checkpoints) {
   SwimRecording rec;
   const bool frame_files = out && (options.vtk || options.pictures);
   // Tracers are drawn in the pictures, written to the VTK files and become the animation's marine
@@ -173,6 +225,26 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   if (frame_files) files = std::make_unique<FrameFiles>(*out, options);
   rec.others.resize(sim.jellyfish_count() > 1 ? sim.jellyfish_count() - 1 : 0);
   std::size_t frame = 0;
+  if (checkpoints && checkpoints->resume) {
+    core::StateArchive state = core::StateArchive::restoring(*checkpoints->resume);
+    sim.restore_state(state);
+    archive_recording(state, rec);
+    state.check_all_read();
+    frame = rec.frame_times.size();
+    if (files) files->continue_after(rec.frame_times);
+  }
+  const double every = out && checkpoints ? checkpoints->how.every_s : 0.0;
+  double next_checkpoint = every > 0 ? next_checkpoint_time(sim.time_s(), every) : INFINITY;
+  // A checkpoint at a frame: the simulation, then what has been recorded up to that frame.
+  auto write_checkpoint = [&](const jellyfish::SwimSimulation& s) {
+    core::StateArchive state = core::StateArchive::saving();
+    s.save_state(state);
+    archive_recording(state, rec);
+    io::Checkpoint c = checkpoints->how;
+    c.state = state.take_entries();
+    io::write_checkpoint(*out, c);
+    next_checkpoint = next_checkpoint_time(s.time_s(), every);
+  };
   rec.stats = sim.run(
       [&](const jellyfish::SwimSimulation& s) -> std::string {
         if (files) files->write(s, frame);
@@ -192,9 +264,12 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         for (std::size_t k = 0; k < s.structure_count(); ++k) centroids.push_back(s.structure_centroid(k));
         rec.structure_centroids.push_back(std::move(centroids));
         if (options.record_tracers) rec.tracers.push_back(s.tracers().positions());
+        // Never a checkpoint of a state that failed (run() draws it as a last frame).
+        if (s.time_s() >= next_checkpoint * (1.0 - 1e-12) && s.check().empty()) write_checkpoint(s);
         return {};
       },
-      progress);
+      progress, static_cast<std::int64_t>(frame));
+  if (every > 0 && rec.stats.failure.empty()) out->remove(io::kCheckpointName);  // the run is whole
   const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
   if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
   for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));

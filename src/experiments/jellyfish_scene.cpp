@@ -10,7 +10,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_jellyfish(const Context& ct
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   const SwimOutputOptions options = read_output_options(ctx.config);
   return [settings, options, ctx](const io::OutputDir& out) {
-    const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
+    const SwimRecording rec = run_swim(settings, options, &out, ctx.progress, ctx.checkpoints.get());
     write_metrics_csv(out, rec.metrics);
     write_slices_csv(out, rec.frames);
     write_scene_extras(out, rec);

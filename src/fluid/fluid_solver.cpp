@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/fluid/eulerian_solver.hpp"
 #include "semi_lagrangian_solver.hpp"
 
@@ -83,6 +84,17 @@ void set_scheme(FluidSettings& settings, std::string_view solver, std::string_vi
   for (const std::string& n : names) allowed += (allowed.empty() ? "" : ", ") + n;
   throw std::invalid_argument("the " + std::string(solver) + " solver has no scheme '" + std::string(scheme) +
                               "' (expected one of " + allowed + ")");
+}
+
+void FluidSolver::archive(core::StateArchive& a) {
+  const core::StateArchive::Scope scope(a, "fluid");
+  fluid::archive(a, "velocity", state_.velocity);
+  fluid::archive(a, "pressure", state_.pressure);
+  fluid::archive(a, "body_acceleration", body_acceleration_);
+  a.value("time", time_s_);
+  a.value("viscosity", settings_.viscosity_m2_per_s);
+  const core::StateArchive::Scope projection(a, "projector");
+  projector_.archive(a);
 }
 
 void FluidSolver::set_viscosity(double nu_m2_per_s) {

@@ -1,5 +1,7 @@
 #include "jellysim/fluid/grid.hpp"
 
+#include "jellysim/core/state_archive.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -31,6 +33,14 @@ Field::Field(const MacGrid& grid, Staggering staggering, double value)
       inv_dy_(1.0 / grid.dy()) {}
 
 void Field::fill(double value) { std::fill(data_.begin(), data_.end(), value); }
+
+void archive(core::StateArchive& a, std::string_view name, Field& f) { a.values(name, f.raw()); }
+
+void archive(core::StateArchive& a, std::string_view name, Velocity& v) {
+  const core::StateArchive::Scope scope(a, name);
+  archive(a, "u", v.u);
+  archive(a, "v", v.v);
+}
 
 double Field::max_abs_interior() const {
   // Four running maxima per row break the dependency chain so the compiler can use packed max

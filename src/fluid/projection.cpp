@@ -1,5 +1,7 @@
 #include "jellysim/fluid/projection.hpp"
 
+#include "jellysim/core/state_archive.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -159,6 +161,14 @@ PressureSolveReport Projector::project(FlowState& state, const Boundaries& b, do
     last_dt_s_ = dt_s;
   }
   return report;
+}
+
+void Projector::archive(core::StateArchive& a) {
+  a.vector("last_phi", last_phi_);
+  a.vector("previous_phi", previous_phi_);
+  a.value("last_dt", last_dt_s_);
+  a.value("have_previous", have_previous_);
+  a.value("have_last", have_last_);
 }
 
 }  // namespace jellysim::fluid

@@ -5,12 +5,29 @@
 #include <span>
 #include <stdexcept>
 
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/fluid/semi_lagrangian.hpp"
 
 namespace jellysim::fluid {
 
 SemiLagrangianSolver::SemiLagrangianSolver(const MacGrid& grid, const FluidSettings& settings)
     : FluidSolver(grid, settings), advected_(grid), diffusion_(grid, settings.geometry), compensated_(grid) {}
+
+void SemiLagrangianSolver::archive(core::StateArchive& a) {
+  FluidSolver::archive(a);
+  const core::StateArchive::Scope scope(a, "semi_lagrangian");
+  a.value("has_history", has_history_);
+  a.value("last_dt", last_dt_s_);
+  if (!has_history_) return;
+  // The second-order step's history (allocated by the first step; a restored solver has not taken one).
+  const MacGrid& g = state_.grid;
+  if (last_start_.u.count_x() == 0) last_start_ = last_end_ = Velocity(g);
+  if (last_pressure_.count_x() == 0) last_pressure_ = increment_ = Field(g, kCellCentres);
+  fluid::archive(a, "last_start", last_start_);
+  fluid::archive(a, "last_end", last_end_);
+  fluid::archive(a, "last_pressure", last_pressure_);
+  fluid::archive(a, "increment", increment_);
+}
 
 double SemiLagrangianSolver::stable_time_step() const { return std::numeric_limits<double>::infinity(); }
 

@@ -16,6 +16,7 @@ class SemiLagrangianSolver final : public FluidSolver {
   std::string_view name() const override { return "semi-lagrangian"; }
   StepReport step(double dt_s) override;
   double stable_time_step() const override;
+  void archive(core::StateArchive& a) override;
 
  private:
   StepReport second_order_step(double dt_s);

@@ -99,7 +99,9 @@ void write_file_atomically(const fs::path& target, std::string_view content) {
 /// The files a run wrote, kept on disk as the list grows, so a killed run still leaves it right.
 class RunManifest {
  public:
-  RunManifest(fs::path file, std::string header) : file_(std::move(file)), header_(std::move(header)) {
+  /// `names`: an earlier run's outputs that this run continues (a resumed run).
+  RunManifest(fs::path file, std::string header, std::set<std::string> names = {})
+      : file_(std::move(file)), header_(std::move(header)), names_(std::move(names)) {
     write_whole();
   }
   void record(const std::string& relative) {
@@ -112,6 +114,10 @@ class RunManifest {
   void finish() {
     const std::lock_guard lock(mutex_);
     write_whole();
+  }
+  void forget(const std::string& relative) {
+    const std::lock_guard lock(mutex_);
+    if (names_.erase(relative) > 0) write_whole();
   }
 
  private:
@@ -154,21 +160,29 @@ std::set<std::string> earlier_outputs(const fs::path& manifest) {
   return names;
 }
 
-/// Removes an earlier run's outputs from `dir`, or throws InputError, touching nothing, when the
-/// directory holds anything else.
-void clear_earlier_run(const fs::path& dir) {
-  const std::set<std::string> earlier = earlier_outputs(dir / kManifestName);
-  std::vector<fs::path> ours, folders;
+/// What an earlier run left in a results directory.
+struct EarlierRun {
+  std::set<std::string> outputs;  ///< the names its manifest lists
+  std::vector<fs::path> files;    ///< its manifest and outputs
+  std::vector<fs::path> temporaries, folders;
+};
+
+/// Sorts the directory's contents into an earlier run's; throws InputError, touching nothing, when
+/// it holds anything else.
+EarlierRun scan_earlier_run(const fs::path& dir, std::string_view option) {
+  EarlierRun run;
+  run.outputs = earlier_outputs(dir / kManifestName);
   std::vector<std::string> foreign;
   std::error_code ec;
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     const std::string relative = it->path().lexically_relative(dir).generic_string();
     if (it->is_directory() && !it->is_symlink()) {
-      folders.push_back(it->path());
-    } else if (relative == kManifestName || earlier.contains(relative) ||
-               is_leftover_temporary(it->path().filename().string())) {
-      ours.push_back(it->path());
+      run.folders.push_back(it->path());
+    } else if (is_leftover_temporary(it->path().filename().string())) {
+      run.temporaries.push_back(it->path());
+    } else if (relative == kManifestName || run.outputs.contains(relative)) {
+      run.files.push_back(it->path());
     } else {
       foreign.push_back(relative);
     }
@@ -176,11 +190,21 @@ void clear_earlier_run(const fs::path& dir) {
   if (ec) throw RunError("cannot read output directory '" + dir.string() + "': " + ec.message());
   if (!foreign.empty()) {
     std::sort(foreign.begin(), foreign.end());
-    throw InputError("--out '" + dir.string() + "' holds " + std::to_string(foreign.size()) +
+    throw InputError(std::string(option) + " '" + dir.string() + "' holds " + std::to_string(foreign.size()) +
                      " file(s) that no earlier jellysim run there wrote (e.g. '" + foreign.front() +
                      "'); jellysim does not mix its results with other files: choose a new or empty directory");
   }
-  for (const fs::path& p : ours) fs::remove(p, ec);
+  return run;
+}
+
+/// Removes an earlier run's outputs from `dir`, or throws InputError, touching nothing, when the
+/// directory holds anything else.
+void clear_earlier_run(const fs::path& dir) {
+  const EarlierRun earlier = scan_earlier_run(dir, "--out");
+  std::error_code ec;
+  for (const fs::path& p : earlier.files) fs::remove(p, ec);
+  for (const fs::path& p : earlier.temporaries) fs::remove(p, ec);
+  std::vector<fs::path> folders = earlier.folders;
   // Deepest folders first, so a folder emptied of its subfolders goes too.
   std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
     return std::distance(a.begin(), a.end()) > std::distance(b.begin(), b.end());
@@ -201,6 +225,28 @@ OutputDir OutputDir::for_run(std::filesystem::path dir, std::string_view command
       out.dir_ / kManifestName, "# jellysim " + std::string(command) +
                                     ": the files of this run; a later run into this directory removes them first\n");
   return out;
+}
+
+OutputDir OutputDir::for_resumed_run(std::filesystem::path dir, std::string_view command) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / kManifestName, ec))
+    throw InputError("--resume '" + dir.string() + "': not the results directory of a jellysim run (no " +
+                     std::string(kManifestName) + ")");
+  EarlierRun earlier = scan_earlier_run(dir, "--resume");
+  for (const fs::path& p : earlier.temporaries) fs::remove(p, ec);
+  OutputDir out(std::move(dir));
+  out.manifest_ = std::make_shared<RunManifest>(
+      out.dir_ / kManifestName, "# jellysim " + std::string(command) +
+                                    ": the files of this run; a later run into this directory removes them first\n",
+      std::move(earlier.outputs));
+  return out;
+}
+
+void OutputDir::remove(std::string_view name) const {
+  std::error_code ec;
+  fs::remove(dir_ / name, ec);
+  if (ec) throw RunError("cannot remove '" + (dir_ / name).string() + "': " + ec.message());
+  if (manifest_) manifest_->forget(prefix_ + std::string(name));
 }
 
 OutputDir OutputDir::subdirectory(std::string_view name) const {

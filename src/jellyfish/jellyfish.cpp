@@ -1,5 +1,7 @@
 #include "jellysim/jellyfish/jellyfish.hpp"
 
+#include "jellysim/core/state_archive.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -311,6 +313,19 @@ Vec2 Jellyfish::heading() const {
                                x[static_cast<std::size_t>(layout_.umbrella.back())]);
   const Vec2 axis = x[static_cast<std::size_t>(layout_.umbrella[static_cast<std::size_t>(layout_.apex)])] - aperture;
   return norm(axis) > 0 ? axis / norm(axis) : initial_axis();
+}
+
+void Jellyfish::archive(core::StateArchive& a) {
+  a.value("frequency", spec_.frequency_hz);
+  a.value("phase", spec_.phase_cycles);
+  a.value("gamma", spec_.gamma);
+  a.value("steering", spec_.steering);
+  a.value("steer_target", spec_.steer_target_m);
+  a.vector("controllers", controllers_);
+  a.value("steer_bias", steer_bias_);
+  a.value("steer_updated_phase", steer_updated_phase_);
+  a.value("steer_last_heading", steer_last_heading_);
+  a.value("steer_has_heading", steer_has_heading_);
 }
 
 void Jellyfish::set_frequency(double hz, double t) {

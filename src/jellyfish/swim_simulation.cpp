@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/elastic/mirror.hpp"
 
 namespace jellysim::jellyfish {
@@ -381,13 +382,14 @@ SwimStep SwimSimulation::advance(double dt_s) {
   return s;
 }
 
-SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::ProgressCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
+SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::ProgressCallback& progress,
+                                 std::int64_t frames_recorded) {
+  run_start_ = std::chrono::steady_clock::now();
   SwimRunStats stats;
-  stats.smallest_step_s = INFINITY;
   const double duration = settings_.duration_s;
   sim::FrameClock clock(settings_.frame_interval_s, duration, 1e-12 * std::max(1.0, duration),
                         sim::FrameClock::Ending::nearest_frame);
+  for (std::int64_t k = 0; k < frames_recorded; ++k) clock.frame_emitted();
   sim::ClockedRun loop;
   loop.time = [this] { return time_s(); };
   loop.frame = [&](std::int64_t) { return on_frame ? on_frame(*this) : std::string(); };
@@ -398,9 +400,9 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
     const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
     const SwimStep s = advance(limit);
     if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
-      stats.smallest_step_s = std::min(stats.smallest_step_s, s.dt_s);
-      stats.largest_step_s = std::max(stats.largest_step_s, s.dt_s);
-      stats.krylov_iterations += s.krylov_iterations;
+      smallest_step_s_ = std::min(smallest_step_s_, s.dt_s);
+      largest_step_s_ = std::max(largest_step_s_, s.dt_s);
+      krylov_iterations_ += s.krylov_iterations;
     }
     if (!s.failure.empty()) {
       // Keep the state that failed as a last frame, if it can be drawn at all (a non-finite state
@@ -426,9 +428,43 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   stats.mirror_symmetric = world_->mirror_symmetric();
   stats.half_tank = world_->solving_half_tank();
   stats.symmetry_note = mirror_note_;
-  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!std::isfinite(stats.smallest_step_s)) stats.smallest_step_s = 0.0;
+  stats.wall_seconds =
+      earlier_wall_seconds_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_).count();
+  stats.smallest_step_s = std::isfinite(smallest_step_s_) ? smallest_step_s_ : 0.0;
+  stats.largest_step_s = largest_step_s_;
+  stats.krylov_iterations = krylov_iterations_;
   return stats;
+}
+
+void SwimSimulation::archive(core::StateArchive& a) {
+  world_->archive(a);
+  for (std::size_t j = 0; j < school_.size(); ++j) {
+    const core::StateArchive::Scope scope(a, "jellyfish_" + std::to_string(j + 1));
+    school_[j]->archive(a);
+  }
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) a.value("obstacle_" + std::to_string(o + 1) + ".shift", *obstacles_[o].shift);
+  a.text("mirror_note", mirror_note_);
+  const core::StateArchive::Scope scope(a, "run");
+  a.value("smallest_step", smallest_step_s_);
+  a.value("largest_step", largest_step_s_);
+  a.value("krylov_iterations", krylov_iterations_);
+  // Wall-clock so far (summary.json's wall_seconds counts every leg of a resumed run).
+  double wall = earlier_wall_seconds_;
+  if (!a.is_restoring() && run_start_ != std::chrono::steady_clock::time_point{})
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_).count();
+  a.value("wall_seconds", wall);
+  if (a.is_restoring()) earlier_wall_seconds_ = wall;
+}
+
+void SwimSimulation::save_state(core::StateArchive& a) const {
+  if (a.is_restoring()) throw std::logic_error("save_state needs an archive made by StateArchive::saving()");
+  // archive() saves by reading the members; the one function serves both directions.
+  const_cast<SwimSimulation*>(this)->archive(a);
+}
+
+void SwimSimulation::restore_state(core::StateArchive& a) {
+  if (!a.is_restoring()) throw std::logic_error("restore_state needs an archive made by StateArchive::restoring()");
+  archive(a);
 }
 
 // ---- Live edits ----

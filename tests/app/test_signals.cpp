@@ -9,34 +9,14 @@
 #include <thread>
 #include <vector>
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include "../cli_runner.hpp"
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
-
-// Starts jellysim with `args` (no shell), returns its pid.
-pid_t spawn_jellysim(const std::vector<std::string>& args) {
-  std::vector<std::string> all{JELLYSIM_CLI_PATH};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
-}
+using jellysim::testing::spawn_jellysim;
 
 // Waits (up to a minute) until `file` exists: the run is then inside its step loop.
 bool wait_for(const fs::path& file) {

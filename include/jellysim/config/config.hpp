@@ -47,6 +47,8 @@ class Config {
   static Config parse(std::string_view text, const std::string& source);
   /// Reads and parses a TOML file: a regular file of at most kMaxSceneFileBytes (else InputError).
   static Config load(const std::filesystem::path& path);
+  /// The text load() parses, with its checks.
+  static std::string read_scene_text(const std::filesystem::path& path);
   static constexpr std::uintmax_t kMaxSceneFileBytes = 1u << 20;
 
   /// Overlays every field of `overlay` onto this configuration. Fields must exist here and have

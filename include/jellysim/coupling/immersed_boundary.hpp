@@ -109,6 +109,10 @@ class ImmersedBoundary {
   /// mirror image of point p (elastic/mirror.hpp): the solve then looks for a symmetric increment
   /// and the preconditioner works on the symmetric unknowns only (half of them). Empty: no symmetry.
   void set_mirror_symmetry(std::vector<int> partners);
+  /// Checkpoints (core/state_archive.hpp): the clock, the step count, the last increment (GMRES's
+  /// first guess), the response projections' last pressure and, when R is kept between steps
+  /// (mobility_rebuild_cells > 0), R and where it was built. The fluid and body are the caller's.
+  void archive(core::StateArchive& a);
 
 
  private:

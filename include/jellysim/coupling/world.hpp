@@ -91,6 +91,10 @@ class World {
   /// An axisymmetric tank keeps it always: throws std::invalid_argument.
   void end_mirror_symmetry();
   bool axisymmetric() const { return tank_.geometry == fluid::Geometry::axisymmetric; }
+  /// Checkpoints (core/state_archive.hpp): every marker's position and velocity and the springs'
+  /// actuated rest lengths and constants, the fluid, the coupling, the tracers, the symmetry kept.
+  /// Restores into a world built from the same scene (a mismatch is core::StateMismatch).
+  void archive(core::StateArchive& a);
 
   // ---- Live edits ----
   void set_viscosity(double nu_m2_per_s) { fluid_->set_viscosity(nu_m2_per_s); }

@@ -6,6 +6,7 @@
 #include "jellysim/sim/time_stepping.hpp"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,13 @@ namespace jellysim::experiments {
 
 /// What an experiment gets: its configuration (defaults + scene file + --set), where to write, and
 /// a progress callback for long runs (may be empty).
+struct Checkpointing;  // jellyfish_runs.hpp
+
 struct Context {
   io::Config config;
   sim::ProgressCallback progress;
+  /// `jellysim simulate --checkpoint-every` / `--resume` (null: no checkpoints).
+  std::shared_ptr<const Checkpointing> checkpoints{};
 };
 
 /// Result of an experiment run. `failure` non-empty means the run failed (exit code 1) after

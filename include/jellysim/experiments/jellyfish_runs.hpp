@@ -4,7 +4,10 @@
 // pictures and VTK files, and writing metrics, plots and summary figures.
 #include <nlohmann/json.hpp>
 
+#include <optional>
+
 #include "jellysim/config/config.hpp"
+#include "jellysim/io/checkpoint.hpp"
 #include "jellysim/io/output.hpp"
 #include "jellysim/jellyfish/metrics.hpp"
 #include "jellysim/jellyfish/swim_simulation.hpp"
@@ -38,9 +41,20 @@ struct SwimRecording {
   std::vector<std::vector<Vec2>> tracers;           ///< per frame, when SwimOutputOptions::record_tracers
 };
 
-/// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/).
+/// Checkpoints of a swim (issue 23): io/checkpoint.hpp's file, written at the first frame at or
+/// after every `how.every_s` simulated seconds, holding the simulation's state and the recording
+/// so far; and the state a resumed run continues from.
+struct Checkpointing {
+  io::Checkpoint how;  ///< the run's configuration as given (each checkpoint carries it); .state unused
+  std::optional<core::StateArchive::Entries> resume;  ///< the checkpoint's state, when resuming
+};
+
+/// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/). With
+/// `checkpoints` (and `out`), writes checkpoints, or continues from one: the outputs are those of
+/// the uninterrupted run, byte for byte. A completed run removes its checkpoint.
 SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
-                       const io::OutputDir* out, const sim::ProgressCallback& progress);
+                       const io::OutputDir* out, const sim::ProgressCallback& progress,
+                       const Checkpointing* checkpoints = nullptr);
 
 /// metrics.csv: t, position, velocity, acceleration, volume, aperture_area, volume_ratio,
 /// aperture_ratio, thrust, lateral, daniel_velocity, daniel_position.

@@ -93,6 +93,10 @@ class FluidSolver {
   void set_viscosity(double nu_m2_per_s);
   /// Re-applies the boundary conditions to the current velocity (after external edits).
   void apply_boundaries() { apply_velocity_boundaries(state_.velocity, settings_.boundaries); }
+  /// Checkpoints (core/state_archive.hpp): the flow, the body accelerations, the clock, the
+  /// viscosity and every history a step reads (pressures of the extrapolated guess, the
+  /// second-order step's last velocities), so that a restored solver continues bit for bit.
+  virtual void archive(core::StateArchive& a);
 
  protected:
   FluidSolver(const MacGrid& grid, const FluidSettings& settings);

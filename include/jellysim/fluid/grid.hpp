@@ -5,9 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "jellysim/math/vec2.hpp"
+
+namespace jellysim::core {
+class StateArchive;
+}
 
 namespace jellysim::fluid {
 
@@ -142,5 +147,9 @@ struct FlowState {
   FlowState() = default;
   explicit FlowState(const MacGrid& g) : grid(g), velocity(g), pressure(g, kCellCentres) {}
 };
+
+/// Checkpoints (core/state_archive.hpp): a field's samples, ghosts included, bit for bit.
+void archive(core::StateArchive& a, std::string_view name, Field& f);
+void archive(core::StateArchive& a, std::string_view name, Velocity& v);
 
 }  // namespace jellysim::fluid

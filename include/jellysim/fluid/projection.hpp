@@ -38,6 +38,8 @@ class Projector {
   void set_extrapolation(bool on) { extrapolate_ = on; }
   /// Forgets the stored pressures (the next guess is the state's pressure alone).
   void reset_history() { have_previous_ = have_last_ = false; }
+  /// Checkpoints: the stored pressures of the extrapolated guess.
+  void archive(core::StateArchive& a);
 
  private:
   std::unique_ptr<PressureSolver> solver_;

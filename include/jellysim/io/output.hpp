@@ -41,6 +41,10 @@ class OutputDir {
   /// (exit 2) and nothing is touched. Every file this run writes, here or in subdirectory()s, is
   /// listed in manifest.txt as it is written (sorted when the run ends: finish_manifest()).
   static OutputDir for_run(std::filesystem::path dir, std::string_view command);
+  /// The results directory of a run that continues there (`simulate --resume`): the earlier run's
+  /// outputs stay and remain in the manifest, temporaries it left are removed; a directory
+  /// without a manifest, or holding other files, is an InputError.
+  static OutputDir for_resumed_run(std::filesystem::path dir, std::string_view command);
   /// The directory `name` inside this one, created if needed; its files join this run's manifest.
   OutputDir subdirectory(std::string_view name) const;
   /// Rewrites manifest.txt in sorted order (the order files were written in may vary with threads).
@@ -53,6 +57,8 @@ class OutputDir {
   void write_text(std::string_view name, std::string_view content) const;
   /// Writes a JSON document (2-space indented, trailing newline) atomically.
   void write_json(std::string_view name, const nlohmann::ordered_json& json) const;
+  /// Removes the file `name` (one of this run's) and its line in the manifest.
+  void remove(std::string_view name) const;
 
   /// For writers that need a path (e.g. image libraries): creates an empty temporary file next to
   /// `name` exclusively (create_temporary_beside) and returns its path; commit() syncs it and

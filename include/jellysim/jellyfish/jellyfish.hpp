@@ -15,6 +15,10 @@
 #include "jellysim/jellyfish/contraction.hpp"
 #include "jellysim/jellyfish/slice_frame.hpp"
 
+namespace jellysim::core {
+class StateArchive;
+}
+
 namespace jellysim::jellyfish {
 
 enum class UmbrellaModel { angular, mesh };
@@ -131,6 +135,9 @@ class Jellyfish {
   /// The steering bias now: signed extra bend (rad) of the steering side at full contraction,
   /// shared by its joints; positive bends the left side (umbrella start) inward.
   double steer_bias() const { return steer_bias_; }
+  /// Checkpoints (core/state_archive.hpp): the contraction's live settings, the eq. 7.2
+  /// controllers and the steering's memory. The markers are the world's.
+  void archive(core::StateArchive& a);
 
  private:
   JellyfishSpec spec_;

@@ -7,7 +7,9 @@
 // The simulation steps to each output frame, or one step at a time for an interactive viewer,
 // and accepts live edits (frequency, contraction, stiffness, viscosity, dragging, stirring).
 // Knows nothing of files or pixels.
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -63,7 +65,19 @@ class SwimSimulation {
 
   /// Called at t = 0 and at every frame time; a non-empty return stops the run with that failure.
   using FrameCallback = std::function<std::string(const SwimSimulation&)>;
-  SwimRunStats run(const FrameCallback& on_frame, const sim::ProgressCallback& progress = {});
+  /// Steps to settings().duration_s, calling on_frame at every frame. A simulation restored from a
+  /// checkpoint taken at frame k (restore_state) continues with frames_recorded = k + 1: the first
+  /// frame it records is k + 1, and the stats count the whole run.
+  SwimRunStats run(const FrameCallback& on_frame, const sim::ProgressCallback& progress = {},
+                   std::int64_t frames_recorded = 0);
+
+  /// Checkpoints (issue 23, core/state_archive.hpp): everything a run changes — the world (fluid,
+  /// markers, springs, coupling, tracers), each jellyfish's controllers and steering, obstacle
+  /// drags, the run's step statistics. save_state only reads the simulation.
+  void save_state(core::StateArchive& a) const;
+  /// Restores a saved state into a simulation built from the same settings; throws
+  /// core::StateMismatch when the checkpoint is of another scene.
+  void restore_state(core::StateArchive& a);
 
   /// One coupled step of the largest stable size, at most max_dt_s; advects the tracers and checks
   /// for instability. For interactive use; run() calls it too.
@@ -129,6 +143,8 @@ class SwimSimulation {
   void make_ring_tethers(const ObstacleParts& parts, double spacing, elastic::Body& body) const;
   /// One coupled step of exactly dt_s (at most the stable step), then the checks.
   SwimStep advance(double dt_s);
+  /// Both directions of save_state/restore_state.
+  void archive(core::StateArchive& a);
   /// Why the scene is not its own mirror image (coupling::TankSpec::symmetry), "" when it is; on success
   /// fills the point and jellyfish mirror partners.
   std::string mirror_problem(const elastic::Body& body, std::vector<int>& partners);
@@ -145,6 +161,11 @@ class SwimSimulation {
   std::vector<double> strain_reference_;  ///< rest lengths at build time (muscles uncontracted)
   std::string mirror_note_;
   std::vector<int> jellyfish_mirror_;  ///< per jellyfish, the one that is its mirror image
+  // The run's step statistics (SwimRunStats), kept across a checkpoint.
+  double smallest_step_s_ = INFINITY, largest_step_s_ = 0.0;
+  long krylov_iterations_ = 0;
+  double earlier_wall_seconds_ = 0.0;  ///< wall-clock of the run before its checkpoint
+  std::chrono::steady_clock::time_point run_start_{};  ///< when run() began (this process)
 };
 
 /// What a swim simulation will allocate, worked out from its settings before anything is built

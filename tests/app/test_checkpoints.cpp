@@ -1,0 +1,146 @@
+// Checkpoints and --resume (issue 23): a run killed with SIGKILL after a checkpoint continues with
+// `jellysim simulate --resume DIR` and ends with the files of the uninterrupted run, byte for
+// byte; a checkpoint that cannot be continued is refused with exit 2.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <sys/wait.h>
+
+#include "../cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using jellysim::testing::fresh_scratch_dir;
+using jellysim::testing::read_text_file;
+using jellysim::testing::run_jellysim;
+using jellysim::testing::spawn_jellysim;
+
+//// Waits until `file` exists while the process runs; false when it ended first.
+bool wait_for(const fs::path& file, pid_t pid) {
+  for (;;) {
+    if (fs::exists(file)) return true;
+    if (::waitpid(pid, nullptr, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+std::vector<std::string> split(const std::string& args) {
+  std::vector<std::string> words;
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+/// summary.json without its wall-clock figures (they differ from run to run by nature).
+std::string summary_without_timings(const fs::path& file) {
+  std::istringstream in(read_text_file(file));
+  std::string kept;
+  for (std::string line; std::getline(in, line);)
+    if (line.find("wall_seconds") == std::string::npos && line.find("realtime_factor") == std::string::npos)
+      kept += line + "\n";
+  return kept;
+}
+
+/// Every file of a results directory but summary.json, by relative path.
+std::vector<fs::path> files_of(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename() != "summary.json") files.push_back(e.path().lexically_relative(dir));
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// Runs `args` uninterrupted, and again with checkpoints, killed with SIGKILL at frame `kill_at`
+/// (after the first checkpoint) and resumed: both directories must hold the same bytes.
+void expect_resumed_run_is_uninterrupted_run(const std::string& name, const std::string& args, double every_s,
+                                              int kill_at) {
+  const fs::path whole = fresh_scratch_dir(name + "_whole"), resumed = fresh_scratch_dir(name + "_resumed");
+  const jellysim::testing::CliResult reference = run_jellysim("simulate " + args + " --quiet --out " + whole.string());
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+
+  std::vector<std::string> killed{"simulate", "--quiet", "--out", resumed.string(), "--checkpoint-every",
+                                  std::to_string(every_s)};
+  for (const std::string& w : split(args)) killed.push_back(w);
+  const pid_t pid = spawn_jellysim(killed);
+  ASSERT_GT(pid, 0);
+  const bool checkpointed = wait_for(resumed / "checkpoint.jellysim", pid);
+  char frame[32];
+  std::snprintf(frame, sizeof frame, "body_%06d.vtp", kill_at);
+  const bool running = checkpointed && wait_for(resumed / "frames" / frame, pid);
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(running) << "the run ended before it could be killed after a checkpoint";
+
+  const jellysim::testing::CliResult again = run_jellysim("simulate --resume " + resumed.string() + " --quiet");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_FALSE(fs::exists(resumed / "checkpoint.jellysim")) << "a completed run keeps no checkpoint";
+
+  const std::vector<fs::path> files = files_of(whole);
+  ASSERT_EQ(files, files_of(resumed));
+  for (const fs::path& f : files) EXPECT_EQ(read_text_file(whole / f), read_text_file(resumed / f)) << f;
+  EXPECT_EQ(summary_without_timings(whole / "summary.json"), summary_without_timings(resumed / "summary.json"));
+  fs::remove_all(whole);
+  fs::remove_all(resumed);
+}
+
+// The built-in scene: the Eulerian solver on the half tank (the mirror symmetry), FFT pressure,
+// the semi-implicit coupling; VTK files per frame, their .pvd collection continued.
+TEST(Checkpoints, AKilledRunResumesToTheUninterruptedRunsBytes) {
+  expect_resumed_run_is_uninterrupted_run("builtin", "--duration 0.6 --set output.pictures=false", 0.2, 9);
+}
+
+// Every history a step reads: the second-order semi-Lagrangian step's last velocities, multigrid
+// pressure solves started from extrapolated and last pressures, the mobility matrix kept between
+// steps, the whole tank without symmetry, tracers drawn in pictures.
+TEST(Checkpoints, HistoriesOfTheSolversSurviveAResume) {
+  expect_resumed_run_is_uninterrupted_run(
+      "histories",
+      "--duration 0.5 --set tank.solver=semi-lagrangian --set tank.advection=maccormack --set tank.pressure_solver=multigrid "
+      "--set tank.symmetry=none --set coupling.mobility_rebuild=0.5 --set tank.tracers_per_side=10 "
+      "--set output.picture_every=5",
+      0.15, 8);
+}
+
+TEST(Checkpoints, WhatCannotBeResumedIsAnInputError) {
+  const fs::path dir = fresh_scratch_dir("resume_refused");
+  // A finished run has no checkpoint.
+  ASSERT_EQ(run_jellysim("simulate --duration 0.1 --set output.pictures=false --quiet --checkpoint-every 0.05 --out " +
+                         dir.string()).exit_code, 0);
+  jellysim::testing::CliResult r = run_jellysim("simulate --resume " + dir.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("no checkpoint there"), std::string::npos) << r.output;
+  // A damaged checkpoint (one byte changed) is refused by its checksum.
+  const pid_t pid = spawn_jellysim({"simulate", "--duration", "2", "--set", "output.pictures=false", "--quiet",
+                                    "--checkpoint-every", "0.05", "--out", dir.string()});
+  ASSERT_GT(pid, 0);
+  const bool checkpointed = wait_for(dir / "checkpoint.jellysim", pid);
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(checkpointed);
+  const fs::path file = dir / "checkpoint.jellysim";
+  std::string bytes = read_text_file(file);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  std::ofstream(file, std::ios::binary) << bytes;
+  r = run_jellysim("simulate --resume " + dir.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("checksum"), std::string::npos) << r.output;
+  // The configuration comes from the checkpoint: no scene, --set or --duration beside --resume.
+  r = run_jellysim("simulate --resume " + dir.string() + " --set jellyfish.frequency=0.9");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("excludes"), std::string::npos) << r.output;
+  r = run_jellysim("simulate --checkpoint-every 0 --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2);
+  fs::remove_all(dir);
+}
+
+}  // namespace
