@@ -326,6 +326,8 @@ void add_batch_options(CLI::App& cmd, BatchCommand& b) {
 
 /// `jellysim batch`: over MPI when an MPI launcher started this process, else on threads.
 int run_batch(const BatchCommand& b) {
+  if (b.out.empty() || b.out.front() == '-')
+    throw js::InputError("--out '" + b.out + "': give the batch's directory after --out");
 #ifdef JELLYSIM_MPI
   if (jellysim::app::launched_by_mpi()) return jellysim::app::run_batch_mpi(b.plan, b.sets, b.out, b.threads, b.quiet);
 #endif
