@@ -1,5 +1,6 @@
 // The jellysim command line: thin layer over the library (see docs/cli.md).
 // Exit codes: 0 success, 1 failed run, 2 bad usage or input.
+#include "jellysim/experiments/batch.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/experiments/embedded_data.hpp"
@@ -14,6 +15,9 @@
 #include "jellysim/scene/render_settings.hpp"
 
 #include "jellysim/viewer/viewer.hpp"
+#ifdef JELLYSIM_MPI
+#include "batch_mpi.hpp"
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -349,6 +353,42 @@ int run_view(ViewCommand& v) {
   return js::viewer::run_viewer(settings, o);
 }
 
+/// Options of `jellysim batch`.
+struct BatchCommand {
+  std::string plan;
+  std::string out = "out/batch";
+  std::vector<std::string> sets;
+  int threads = 0;
+  bool quiet = false;
+};
+
+void add_batch_options(CLI::App& cmd, BatchCommand& b) {
+  cmd.add_option("plan", b.plan, "Plan file (TOML): scene, duration, [set], and [product] or [[runs]] (docs/batch.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--out", b.out, "Directory for the runs (runs/NNNN/) and batch.csv; a finished batch's runs in it are "
+                                 "kept (resume)")
+      ->capture_default_str();
+  cmd.add_option("--set", b.sets, "Override a parameter in every run: --set key=value. Repeatable.")
+      ->type_name("KEY=VALUE");
+  cmd.add_option("--threads", b.threads, "Runs at a time on this machine (default: one per core); under mpirun with "
+                                         "more than one rank, one run per worker rank")
+      ->check(CLI::Range(1, 64));
+  cmd.add_flag("--quiet", b.quiet, "No line per run");
+  add_memory_limit_option(cmd);
+}
+
+/// `jellysim batch`: over MPI when an MPI launcher started this process, else on threads.
+int run_batch(const BatchCommand& b) {
+  if (b.out.empty() || b.out.front() == '-')
+    throw js::InputError("--out '" + b.out + "': give the batch's directory after --out");
+#ifdef JELLYSIM_MPI
+  if (jellysim::app::launched_by_mpi()) return jellysim::app::run_batch_mpi(b.plan, b.sets, b.out, b.threads, b.quiet);
+#endif
+  js::experiments::Batch batch(js::experiments::read_batch_plan(b.plan), b.sets, b.out);
+  return js::experiments::run_batch_threaded(batch, b.threads, b.quiet);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -420,6 +460,13 @@ int main(int argc, char** argv) {
   exp->add_option("--threads", threads, "Threads for the SPH experiments (run.threads; default: one per core)")
       ->check(CLI::Range(1, 64));
 
+  BatchCommand batch_cmd;
+  auto* batch = app.add_subcommand(
+      "batch", "Many jellyfish runs from a plan file (a product or list of --set overrides), each into "
+               "DIR/runs/NNNN/ as `simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under "
+               "mpirun; rerun to resume a killed batch (docs/batch.md)");
+  add_batch_options(*batch, batch_cmd);
+
   ViewCommand view_cmd;
   auto* view = app.add_subcommand(
       "view", "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, "
@@ -458,6 +505,7 @@ int main(int argc, char** argv) {
       return run_scene(sim_scene_path, sim_opts, "jellyfish");
     }
     if (view->parsed()) return run_view(view_cmd);
+    if (batch->parsed()) return run_batch(batch_cmd);
     if (ib2d->parsed()) return write_hoover_miller_files(hm_resolution, hm_stem);
     if (sweep->parsed()) {
       if (!sweep_frequencies.empty()) {

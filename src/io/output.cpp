@@ -343,4 +343,21 @@ void CsvWriter::row(std::initializer_list<std::string_view> labels, std::initial
   ++rows_;
 }
 
+void CsvWriter::text_row(const std::vector<std::string>& cells) {
+  if (cells.size() != columns_) throw std::logic_error("CSV row has the wrong number of cells");
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) text_ += ',';
+    const std::string& cell = cells[i];
+    if (cell.find_first_of(",\"\n\r") == std::string::npos) {
+      text_ += cell;
+      continue;
+    }
+    text_ += '"';
+    for (char c : cell) text_ += c == '"' ? std::string("\"\"") : std::string(1, c);
+    text_ += '"';
+  }
+  text_ += '\n';
+  ++rows_;
+}
+
 }  // namespace jellysim::io

@@ -1,5 +1,7 @@
 #include "jellysim/render/field_picture.hpp"
 
+#include "plplot_lock.hpp"
+
 #include <plplot/plstream.h>
 
 #include <algorithm>
@@ -152,6 +154,7 @@ void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns
   if (panels.empty()) throw std::invalid_argument("no panels to draw");
   columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
   const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
+  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
   plstream pls;
   pls.sdev("pngcairo");
   pls.sfnam(png_path.string().c_str());

@@ -2,6 +2,8 @@
 
 #include "jellysim/core/errors.hpp"
 
+#include "plplot_lock.hpp"
+
 #include <plplot/plstream.h>
 
 #include <algorithm>
@@ -152,6 +154,7 @@ void write_chart_png(const ChartSpec& spec, const std::filesystem::path& png_pat
   if (b.empty()) throw RunError("chart '" + chart.title + "' has no finite data to plot");
   b.pad(0.05);
 
+  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
   plstream pls;
   open_png(pls, png_path, chart.width_px, chart.height_px);
   pls.col0(1);
@@ -196,6 +199,7 @@ void write_drawing_strip_png(const std::vector<Drawing>& panels, int columns, co
   constexpr double vx0 = 0.16, vx1 = 0.97, vy0 = 0.14, vy1 = 0.84;
   const int panel_height_px = static_cast<int>(panel_px * (vx1 - vx0) * aspect / (vy1 - vy0));
 
+  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
   plstream pls;
   pls.ssub(columns, rows);
   open_png(pls, png_path, columns * panel_px, rows * panel_height_px);

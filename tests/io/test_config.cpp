@@ -114,6 +114,16 @@ TEST(Output, WritesAtomicallyAndFormatsShortestRoundTrip) {
   std::filesystem::remove_all(dir);
 }
 
+// Text rows (batch.csv's): cells as given, quoted only where a comma, quote or line break needs it.
+TEST(Output, TextRowsQuoteOnlyTheCellsThatNeedIt) {
+  jellysim::io::CsvWriter csv({"run", "cells", "name", "failed"});
+  csv.text_row({"0", "[24, 32]", "say \"hi\"", "false"});
+  csv.text_row({"1", "", "plain", "true"});
+  EXPECT_EQ(csv.text(), "run,cells,name,failed\n0,\"[24, 32]\",\"say \"\"hi\"\"\",false\n1,,plain,true\n");
+  EXPECT_EQ(csv.rows(), 2u);
+  EXPECT_THROW(csv.text_row({"2"}), std::logic_error);
+}
+
 TEST(Config, ArraysOfIntegersAndChoicesAreChecked) {
   Config c = Config::parse("grids = [16, 32]\nsolvers = [\"a\", \"b\"]\n", "defaults");
   EXPECT_EQ(c.integers("grids", 4, 64), (std::vector<std::int64_t>{16, 32}));

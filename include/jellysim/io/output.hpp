@@ -102,6 +102,9 @@ class CsvWriter {
   void row(std::string_view label, std::initializer_list<double> values) { row({label}, values); }
   /// Appends one row whose first cells are text, followed by numbers.
   void row(std::initializer_list<std::string_view> labels, std::initializer_list<double> values);
+  /// Appends one row of cells already written as text (numbers through format_double); a cell
+  /// holding a comma, a quote or a line break is quoted, its quotes doubled (RFC 4180).
+  void text_row(const std::vector<std::string>& cells);
   const std::string& text() const { return text_; }
   std::size_t rows() const { return rows_; }
 
