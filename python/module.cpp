@@ -73,6 +73,17 @@ py::dict metrics_dict(const std::vector<jellysim::jellyfish::MetricsRow>& rows) 
   return d;
 }
 
+/// advance() without the GIL, taking it back at each frame to see whether a signal (Ctrl-C) came.
+void advance(PySimulation& self, double seconds) {
+  const auto signalled = [] {
+    py::gil_scoped_acquire held;
+    return PyErr_CheckSignals() != 0;
+  };
+  bool done = true;
+  self.step_released([&](jp::Simulation& s) { done = s.advance(seconds, signalled); });
+  if (!done) throw py::error_already_set();  // the signal handler's exception (KeyboardInterrupt)
+}
+
 /// The flow on the MAC grid: read-only views of u, v, pressure and their sample coordinates.
 py::dict velocity_field(const py::object& self) {
   return self_of(self).use([&](jp::Simulation& s) {
@@ -126,8 +137,9 @@ void bind_simulation(py::module_& m) {
       .def(py::init<const jp::Scene&>(), py::arg("scene"))
       .def("step", [](PySimulation& s) { s.step_released([](jp::Simulation& x) { x.step(); }); },
            "One coupled step toward the next frame time (GIL released).")
-      .def("advance", [](PySimulation& s, double seconds) { s.step_released([&](jp::Simulation& x) { x.advance(seconds); }); },
-           py::arg("seconds"), "Steps to the frame nearest time + seconds, as `simulate --duration` (GIL released).")
+      .def("advance", &advance, py::arg("seconds"),
+           "Steps to the frame nearest the duration asked for, as `simulate --duration` (GIL released; Ctrl-C stops "
+           "it at a frame).")
       .def_property_readonly("time", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.time_s(); }); }, "s")
       .def_property_readonly("steps", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.steps(); }); })
       .def_property_readonly("frame_count", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.frames().size(); }); })

@@ -50,7 +50,7 @@ py::object field_of(const std::string& message) {
 
 /// The allowed range an InputError gives: "range [a, b]", "in (a, b)", or "not one of: a, b".
 py::object range_of(const std::string& message) {
-  static const std::regex interval(R"((?:range|in) ([\[(][^\])]*[\])]))"), choices(R"(not one of: (.*)$)");
+  static const std::regex interval(R"(\b(?:range|in) ([\[(][^\])]*[\])]))"), choices(R"(not one of: (.*)$)");
   py::object r = capture(message, interval);
   return r.is_none() ? capture(message, choices) : r;
 }

@@ -88,7 +88,7 @@ void Simulation::step() {
   if (sim_->time_s() >= frame_time - frame_tolerance(frame_time)) record_frame();
 }
 
-void Simulation::advance(double seconds) {
+bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
   if (!(seconds >= 0.0) || !std::isfinite(seconds))
     throw InputError("advance: seconds must be a finite number >= 0, got " + std::to_string(seconds));
   if (!failure_.empty()) throw RunError(failure_);
@@ -102,16 +102,23 @@ void Simulation::advance(double seconds) {
   for (std::int64_t k = 0; k < frames_emitted_; ++k) clock.frame_emitted();
   sim::ClockedRun loop;
   loop.time = [this] { return sim_->time_s(); };
-  loop.frame = [this](std::int64_t) {
+  bool stopped = false;
+  loop.frame = [&](std::int64_t) {
     record_frame();
-    return std::string();
+    stopped = stop && stop();
+    return stopped ? std::string("stopped") : std::string();
   };
   loop.step = [this](double frame_time) {
     const std::string failure = step_toward(frame_time);
     return failure.empty() ? sim::StepResult{} : sim::StepResult::failed_with(failure);
   };
   const sim::ClockOutcome outcome = sim::run_frames(clock, loop);
+  if (stopped) {
+    requested_s_ = sim_->time_s();
+    return false;
+  }
   if (!outcome.failure.empty()) throw RunError(outcome.failure);
+  return true;
 }
 
 std::vector<Vec2> Simulation::markers(std::size_t j) const {

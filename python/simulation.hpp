@@ -5,6 +5,7 @@
 // slices.csv). Plain C++: the pybind11 layer (module.cpp) only converts.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,7 +45,9 @@ class Simulation {
   void step();
   /// Steps to the frame nearest the duration asked for so far (the sum of every advance's seconds,
   /// from the time step() reached if beyond it) as `simulate --duration` does; throws RunError.
-  void advance(double seconds);
+  /// `stop` (optional) is asked after every frame: true ends the call there (e.g. Ctrl-C), and the
+  /// next advance counts from the time reached. Returns false when stopped.
+  bool advance(double seconds, const std::function<bool()>& stop = {});
 
   double time_s() const { return sim_->time_s(); }
   long steps() const { return sim_->steps(); }
