@@ -25,3 +25,11 @@ def test_bad_keyword_override_names_the_field(tmp_path):
 def test_unknown_experiment():
     with pytest.raises(jellysim.InputError, match="unknown experiment 'no-such'"):
         jellysim.run_experiment("no-such")
+
+
+def test_failed_run_raises_with_the_summary(tmp_path):
+    with pytest.raises(jellysim.RunError, match="numerical instability") as e:
+        jellysim.run_experiment("simulate", out=tmp_path, duration=0.2, tank__cells=[48, 64], output__pictures=False,
+                                output__vtk=False, stability__max_speed=1e-6)
+    assert e.value.summary["status"] == "failed"
+    assert e.value.summary["failure"] == e.value.message

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import jellysim
+from conftest import CHEAP
 
 
 @pytest.fixture(scope="module")
@@ -107,3 +108,13 @@ def test_ctrl_c_stops_advance_at_a_frame(cheap_scene):
     assert s.metrics()["t"][-1] == stopped_at  # stopped on a recorded frame
     s.advance(2 * cheap_scene.frame_interval)  # goes on from there
     assert s.time == pytest.approx(stopped_at + 2 * cheap_scene.frame_interval, abs=1e-9)
+
+
+def test_failed_step_raises_and_keeps_the_failing_frame():
+    s = jellysim.Simulation(jellysim.load_scene(overrides={**CHEAP, "stability.max_speed": 1e-6}))
+    with pytest.raises(jellysim.RunError, match="numerical instability") as e:
+        s.advance(0.2)
+    assert s.frame_count == 2 and s.metrics()["t"][-1] == s.time  # as simulate: the state that failed
+    with pytest.raises(jellysim.RunError) as again:
+        s.step()
+    assert again.value.message == e.value.message
