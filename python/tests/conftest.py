@@ -2,6 +2,7 @@
 files) and the CLI they compare with (JELLYSIM_BIN, set by CTest)."""
 import os
 import shutil
+import subprocess
 
 import pytest
 
@@ -22,3 +23,10 @@ def jellysim_bin():
     if not path:
         pytest.skip("JELLYSIM_BIN is not set (CTest sets it to the built CLI)")
     return path
+
+
+def run_cli(*args, **kwargs):
+    """Runs the CLI without the interpreter's LD_PRELOAD (the ASan runtime in a sanitizer build,
+    which a program linked with its own runtime must not get twice)."""
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+    return subprocess.run(list(args), env=env, **kwargs)

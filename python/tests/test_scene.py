@@ -1,10 +1,9 @@
 """jellysim.load_scene: the CLI's resolution (built-in scene, file or TOML text, overrides) and its
 validation, with InputError naming the field and the allowed range."""
-import subprocess
-
 import pytest
 
 import jellysim
+from conftest import run_cli
 
 
 def test_builtin_scene_is_simulates():
@@ -55,8 +54,8 @@ def test_scene_cannot_be_overridden():
 
 
 def test_messages_are_the_clis(jellysim_bin, tmp_path):
-    cli = subprocess.run([jellysim_bin, "simulate", "--set", "jellyfish.frequency=7", "--out", str(tmp_path)],
-                         capture_output=True, text=True)
+    cli = run_cli(jellysim_bin, "simulate", "--set", "jellyfish.frequency=7", "--out", str(tmp_path),
+                  capture_output=True, text=True)
     assert cli.returncode == 2
     with pytest.raises(jellysim.InputError) as e:
         jellysim.load_scene(overrides={"jellyfish.frequency": 7})

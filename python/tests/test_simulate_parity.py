@@ -2,20 +2,19 @@
 metrics.csv row agree bit for bit. slices.csv and metrics.csv print the shortest text that reads
 back as the same double (io::format_double), so float() of a cell is the double simulate held."""
 import csv
-import subprocess
 
 import numpy as np
 import pytest
 
 import jellysim
-from conftest import CHEAP
+from conftest import CHEAP, run_cli
 
 
 @pytest.fixture(scope="module")
 def simulate_run(jellysim_bin, tmp_path_factory):
     out = tmp_path_factory.mktemp("simulate")
     sets = [a for key, value in CHEAP.items() for a in ("--set", f"{key}={str(value).lower()}")]
-    subprocess.run([jellysim_bin, "simulate", "--duration", "1", "--out", str(out), "--quiet", *sets], check=True)
+    run_cli(jellysim_bin, "simulate", "--duration", "1", "--out", str(out), "--quiet", *sets, check=True)
     return out
 
 
