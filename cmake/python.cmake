@@ -1,6 +1,6 @@
 # Finds pybind11 and Python 3 (interpreter, headers, NumPy) for the Python module (python/):
-# JELLYSIM_PYTHON AUTO builds it when they are found, ON requires them, OFF skips it. The sanitizer
-# build skips it (an instrumented module in an uninstrumented interpreter; docs/python.md).
+# JELLYSIM_PYTHON AUTO builds it when they are found, ON requires them, OFF skips it. AUTO skips it
+# in the sanitizer build (an instrumented module in an uninstrumented interpreter; docs/python.md).
 if(JELLYSIM_SANITIZE AND JELLYSIM_PYTHON STREQUAL "AUTO")
   set(JELLYSIM_PYTHON OFF)
 endif()
