@@ -1,0 +1,151 @@
+// jellysim.Simulation's state (simulation.hpp): simulate's scene resolution, frame clock and
+// landing rule, over SwimSimulation's public API (SwimSimulation::step).
+#include "simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/render_settings.hpp"
+#include "jellysim/sim/frame_clock.hpp"
+
+namespace jellysim::python {
+
+std::atomic<long> Simulation::live_{0};
+
+namespace {
+
+/// simulate's frame tolerance for a run of this duration (SwimSimulation::run).
+double frame_tolerance(double duration_s) { return 1e-12 * std::max(1.0, duration_s); }
+
+/// The settings simulate runs: without pictures or VTK files the tracers are not advected
+/// (experiments::run_swim); they never change the markers.
+jellyfish::SwimSettings run_settings(const Scene& scene) {
+  jellyfish::SwimSettings s = scene.settings;
+  if (!scene.output.vtk && !scene.output.pictures && !scene.output.record_tracers) s.tank.tracers_per_side = 0;
+  return s;
+}
+
+}  // namespace
+
+void apply_overrides(io::Config& config, const std::vector<std::string>& sets) {
+  for (const std::string& s : sets) {
+    if (s.substr(0, s.find('=')) == "scene")  // as the CLI: the kind comes from the file
+      throw InputError("--set scene: the scene kind cannot be changed by --set; give a scene file instead");
+    config.set(s);
+  }
+}
+
+Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
+  Scene scene{experiments::default_config(experiments::find_experiment("jellyfish")), {}, {}};
+  if (overlay) {
+    if (overlay->has("scene") && overlay->string("scene") != "jellyfish")
+      throw InputError(overlay_name + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
+                       overlay->string("scene") + "'");
+    scene.config.merge(*overlay);
+  }
+  apply_overrides(scene.config, sets);
+  scene.settings = scene::read_swim_settings(scene.config);
+  scene.output = experiments::read_output_options(scene.config);
+  return scene;
+}
+
+Simulation::Simulation(const Scene& scene)
+    : scene_(scene), sim_(std::make_unique<jellyfish::SwimSimulation>(run_settings(scene))) {
+  ++live_;
+  record_frame();  // simulate's frame 0, at t = 0
+}
+
+Simulation::~Simulation() { --live_; }
+
+void Simulation::record_frame() {
+  if (sim_->jellyfish_count() > 0) frames_.push_back(sim_->jellyfish().slice_frame(sim_->time_s()));
+  ++frames_emitted_;
+}
+
+std::string Simulation::step_toward(double frame_time) {
+  if (!failure_.empty()) return failure_;
+  // SwimSimulation::run's rule: land on the frame time without a sliver step before it. step(limit)
+  // takes min(natural, limit): the same step as run's advance(limit).
+  const double remaining = frame_time - sim_->time_s();
+  const double natural = sim_->world().next_time_step();
+  const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
+  const jellyfish::SwimStep s = sim_->step(limit);
+  if (s.failure.empty()) return {};
+  // As run(): the state that failed is kept as a last frame when a step was taken.
+  if (s.dt_s >= scene_.settings.coupling.min_time_step_s && sim_->jellyfish_count() > 0)
+    frames_.push_back(sim_->jellyfish().slice_frame(sim_->time_s()));
+  failure_ = s.failure;
+  return failure_;
+}
+
+void Simulation::step() {
+  const double interval = scene_.settings.frame_interval_s;
+  const double frame_time = static_cast<double>(frames_emitted_) * interval;
+  if (std::string failure = step_toward(frame_time); !failure.empty()) throw RunError(failure);
+  if (sim_->time_s() >= frame_time - frame_tolerance(frame_time)) record_frame();
+}
+
+bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
+  if (!(seconds >= 0.0) || !std::isfinite(seconds))
+    throw InputError("advance: seconds must be a finite number >= 0, got " + std::to_string(seconds));
+  if (!failure_.empty()) throw RunError(failure_);
+  // The durations asked for add up (advance(0.5) twice ends where advance(1.0) does), counted from
+  // the time reached when step() went beyond them.
+  const double duration = std::max(requested_s_, sim_->time_s()) + seconds;
+  requested_s_ = duration;
+  // simulate's clock for a run of this duration, with the frames already recorded.
+  sim::FrameClock clock(scene_.settings.frame_interval_s, duration, frame_tolerance(duration),
+                        sim::FrameClock::Ending::nearest_frame);
+  for (std::int64_t k = 0; k < frames_emitted_; ++k) clock.frame_emitted();
+  sim::ClockedRun loop;
+  loop.time = [this] { return sim_->time_s(); };
+  bool stopped = false;
+  loop.frame = [&](std::int64_t) {
+    record_frame();
+    stopped = stop && stop();
+    return stopped ? std::string("stopped") : std::string();
+  };
+  loop.step = [this](double frame_time) {
+    const std::string failure = step_toward(frame_time);
+    return failure.empty() ? sim::StepResult{} : sim::StepResult::failed_with(failure);
+  };
+  const sim::ClockOutcome outcome = sim::run_frames(clock, loop);
+  if (stopped) {
+    requested_s_ = sim_->time_s();
+    return false;
+  }
+  if (!outcome.failure.empty()) throw RunError(outcome.failure);
+  return true;
+}
+
+std::vector<Vec2> Simulation::markers(std::size_t j) const {
+  const jellyfish::SliceFrame f = sim_->jellyfish(j).slice_frame(sim_->time_s());
+  std::vector<Vec2> points = f.umbrella;
+  for (const std::vector<Vec2>& strand : f.tentacles) points.insert(points.end(), strand.begin(), strand.end());
+  return points;
+}
+
+std::vector<jellyfish::MetricsRow> Simulation::metrics() const {
+  if (frames_.empty()) return {};
+  const jellyfish::SwimSettings& s = scene_.settings;
+  return jellyfish::compute_metrics(frames_, {s.tank.density_kg_per_m3, std::max(s.tank.viscosity_m2_per_s, 1e-9)});
+}
+
+geometry::FrameGeometry Simulation::mesh(std::size_t frame) const {
+  if (frame >= frames_.size())
+    throw std::out_of_range("no recorded frame " + std::to_string(frame) + " (" + std::to_string(frames_.size()) +
+                            " recorded)");
+  if (!builder_) {
+    // As `jellysim run`: the [render] defaults, the first jellyfish's noise seed, the noise length
+    // from frame 0 (render::write_animation_outputs).
+    geometry::GeometrySettings g = scene::read_render_settings(scene::render_parameters().defaults()).geometry;
+    g.noise.seed += static_cast<std::uint64_t>(scene_.settings.jellyfish().noise_seed) - 1;
+    builder_ = std::make_unique<geometry::GeometryBuilder>(g, geometry::resolve_noise_length(g.noise, frames_.front()));
+  }
+  return builder_->build(frames_[frame]);
+}
+
+}  // namespace jellysim::python
