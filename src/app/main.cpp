@@ -21,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -378,6 +379,23 @@ void add_batch_options(CLI::App& cmd, BatchCommand& b) {
   add_memory_limit_option(cmd);
 }
 
+/// How many processes an MPI launcher started alongside this one (its environment; 1 when none).
+long mpi_ranks_from_environment() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* n = std::getenv(v)) return std::max(1L, std::strtol(n, nullptr, 10));
+  return 1;
+}
+
+/// Every command but `batch` is one process: N ranks of it would write the same files at once.
+void refuse_several_ranks(const std::string& command) {
+  const long ranks = mpi_ranks_from_environment();
+  if (ranks <= 1) return;
+  throw js::InputError("`jellysim " + command + "` was started as " + std::to_string(ranks) +
+                       " MPI ranks: only `jellysim batch` spreads runs over ranks (the others would write the same "
+                       "files at once). A frequency sweep on MPI is a batch plan with [product] "
+                       "\"jellyfish.frequency\" = [...] (docs/batch.md)");
+}
+
 /// `jellysim batch`: over MPI when an MPI launcher started this process, else on threads.
 int run_batch(const BatchCommand& b) {
   if (b.out.empty() || b.out.front() == '-')
@@ -498,6 +516,8 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitBadInput;
   }
   try {
+    for (const CLI::App* command : app.get_subcommands())
+      if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
     if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
     if (simulate->parsed()) {
       if (!resume_dir.empty()) return resume_simulation(resume_dir, sim_opts.quiet);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <regex>
 
 #include "../cli_runner.hpp"
@@ -413,5 +414,23 @@ TEST(Cli, SolverCostTablesEveryCombination) {
                               dir.string() + "_bad");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("study.pressure_solvers"), std::string::npos) << bad.output;
+  fs::remove_all(dir);
+}
+
+// Started as several MPI ranks (mpirun -n 3 jellysim sweep), every command but `batch` would write
+// the same files three times at once: it is refused, pointing to `batch`.
+TEST(Cli, CommandsOtherThanBatchRefuseSeveralMpiRanks) {
+  const fs::path dir = fresh_dir("mpi_ranks");
+  ::setenv("OMPI_COMM_WORLD_SIZE", "3", 1);
+  const Result sweep = run_cli("sweep --duration 0.1 --quiet --out " + dir.string());
+  const Result simulate = run_cli("simulate --duration 0.1 --quiet --out " + dir.string());
+  ::setenv("OMPI_COMM_WORLD_SIZE", "1", 1);
+  const Result alone = run_cli("simulate --duration 0.05 --set output.pictures=false --quiet --out " + dir.string());
+  ::unsetenv("OMPI_COMM_WORLD_SIZE");
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_NE(sweep.output.find("`jellysim sweep` was started as 3 MPI ranks"), std::string::npos) << sweep.output;
+  EXPECT_NE(sweep.output.find("jellysim batch"), std::string::npos) << sweep.output;
+  EXPECT_EQ(simulate.exit_code, 2) << simulate.output;
+  EXPECT_EQ(alone.exit_code, 0) << alone.output;  // one rank is one process
   fs::remove_all(dir);
 }
