@@ -1,5 +1,5 @@
-// jellysim.Simulation's state (simulation.hpp): simulate's scene resolution, frame clock and
-// landing rule, over SwimSimulation's public API (SwimSimulation::step).
+// jellysim.Simulation's state (simulation.hpp): simulate's scene resolution and frame clock over
+// SwimSimulation's public API (SwimSimulation::step_toward: run()'s steps).
 #include "simulation.hpp"
 
 #include <algorithm>
@@ -67,12 +67,7 @@ void Simulation::record_frame() {
 
 std::string Simulation::step_toward(double frame_time) {
   if (!failure_.empty()) return failure_;
-  // SwimSimulation::run's rule: land on the frame time without a sliver step before it. step(limit)
-  // takes min(natural, limit): the same step as run's advance(limit).
-  const double remaining = frame_time - sim_->time_s();
-  const double natural = sim_->world().next_time_step();
-  const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
-  const jellyfish::SwimStep s = sim_->step(limit);
+  const jellyfish::SwimStep s = sim_->step_toward(frame_time);  // SwimSimulation::run's steps
   if (s.failure.empty()) return {};
   // As run(): the state that failed is kept as a last frame when a step was taken.
   if (s.dt_s >= scene_.settings.coupling.min_time_step_s && sim_->jellyfish_count() > 0)

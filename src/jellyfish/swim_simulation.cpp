@@ -369,6 +369,12 @@ std::string SwimSimulation::check() const {
 
 SwimStep SwimSimulation::step(double max_dt_s) { return advance(std::min(world_->next_time_step(), max_dt_s)); }
 
+SwimStep SwimSimulation::step_toward(double frame_time_s) {
+  const double remaining = frame_time_s - time_s();
+  const double natural = world_->next_time_step();
+  return advance(natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural));
+}
+
 SwimStep SwimSimulation::advance(double dt_s) {
   SwimStep s;
   s.dt_s = dt_s;
@@ -394,11 +400,7 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   loop.time = [this] { return time_s(); };
   loop.frame = [&](std::int64_t) { return on_frame ? on_frame(*this) : std::string(); };
   loop.step = [&](double frame_time) -> sim::StepResult {
-    // Land on the frame time without a sliver step before it.
-    const double remaining = frame_time - time_s();
-    const double natural = world_->next_time_step();
-    const double limit = natural >= remaining ? remaining : (natural > 0.5 * remaining ? 0.5 * remaining : natural);
-    const SwimStep s = advance(limit);
+    const SwimStep s = step_toward(frame_time);
     if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
       smallest_step_s_ = std::min(smallest_step_s_, s.dt_s);
       largest_step_s_ = std::max(largest_step_s_, s.dt_s);

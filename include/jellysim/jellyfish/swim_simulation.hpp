@@ -82,6 +82,9 @@ class SwimSimulation {
   /// One coupled step of the largest stable size, at most max_dt_s; advects the tracers and checks
   /// for instability. For interactive use; run() calls it too.
   SwimStep step(double max_dt_s = INFINITY);
+  /// One step toward an output frame's time, landing on it without a sliver step before it: run()'s
+  /// steps (also the Python module's Simulation.advance, which must take the same steps).
+  SwimStep step_toward(double frame_time_s);
 
   double time_s() const { return world_->time_s(); }
   long steps() const { return world_->steps(); }
