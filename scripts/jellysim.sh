@@ -42,13 +42,14 @@ build() {
 
 build_release() { build build/release -DCMAKE_BUILD_TYPE=Release; }
 # The sanitizer pass is built with clang, which also builds the libFuzzer target (fuzz/): a cache
-# made by another compiler is started afresh.
+# made by another compiler is started afresh. The Python module is built there too (JELLYSIM_PYTHON=ON:
+# its tests preload the ASan runtime into python3, docs/python.md).
 build_sanitized() {
   if [ -f build/sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/sanitize/CMakeCache.txt; then
     rm -rf build/sanitize
   fi
   CC=clang CXX=clang++ build build/sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
-    -DJELLYSIM_SANITIZE=ON -DJELLYSIM_FUZZ=ON
+    -DJELLYSIM_SANITIZE=ON -DJELLYSIM_FUZZ=ON -DJELLYSIM_PYTHON=ON
 }
 
 command=${1:-run}
