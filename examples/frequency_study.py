@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import jellysim  # noqa: E402
 
 # A coarse tank and no per-frame files: a few seconds per simulated second.
-COARSE = {"tank.cells": [48, 64], "output.pictures": False, "output.vtk": False}
+COARSE = {"tank.cells": [48, 96], "output.pictures": False, "output.vtk": False}
 
 
 def distance_swum(frequency_hz, duration_s):

@@ -27,7 +27,9 @@ run() {  # run NAME ARGS...: one command into $work/NAME, then its CSVs' hashes
   done
 }
 
-run run run --set render.png_frames=false --set render.video=false --set render.glb=false --set render.viewer=false
+# The main job on the preview grid (96 x 192 cells), as tests/app/test_determinism.cpp runs it.
+run run run --set render.png_frames=false --set render.video=false --set render.glb=false --set render.viewer=false \
+  --set 'tank.cells=[96,192]'
 for e in $("$jellysim" scenes | cut -f1); do
   case "$e" in jellyfish|animation) continue ;; esac  # `simulate` and `run` (above) run these
   run "$e" experiment "$e"

@@ -9,7 +9,7 @@ import pytest
 import jellysim
 
 # A coarse tank: seconds per simulated second; simulate runs it without pictures or VTK files.
-CHEAP = {"tank.cells": [48, 64], "output.pictures": False, "output.vtk": False}
+CHEAP = {"tank.cells": [48, 96], "output.pictures": False, "output.vtk": False}
 
 
 @pytest.fixture(scope="session")

@@ -13,9 +13,9 @@ def test_builtin_scene_is_simulates():
 
 
 def test_overrides_and_toml_text():
-    scene = jellysim.load_scene("[jellyfish]\nfrequency = 0.9\n", overrides={"tank.cells": [48, 64], "output.vtk": False})
+    scene = jellysim.load_scene("[jellyfish]\nfrequency = 0.9\n", overrides={"tank.cells": [48, 96], "output.vtk": False})
     assert scene.config["jellyfish"]["frequency"] == 0.9
-    assert scene.config["tank"]["cells"] == [48, 64]
+    assert scene.config["tank"]["cells"] == [48, 96]
     assert scene.config["output"]["vtk"] is False
 
 

@@ -35,11 +35,11 @@ def test_frames_and_metrics(sim):
 
 def test_velocity_field_is_a_read_only_view(sim, cheap_scene):
     f = sim.velocity_field()
-    nx, ny = 48, 64
+    nx, ny = 48, 96
     assert f["u"].shape == (ny, nx + 1) and f["v"].shape == (ny + 1, nx) and f["pressure"].shape == (ny, nx)
     assert f["x_faces"].shape == (nx + 1,) and f["y_faces"].shape == (ny + 1,)
     assert f["x_faces"][0] == 0.0 and f["x_faces"][-1] == pytest.approx(0.24)
-    assert f["y_centres"][0] == pytest.approx(0.32 / ny / 2)
+    assert f["y_centres"][0] == pytest.approx(0.48 / ny / 2)
     for name in ("u", "v", "pressure"):
         assert not f[name].flags.writeable and not f[name].flags.owndata
         with pytest.raises(ValueError):

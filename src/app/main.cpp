@@ -57,6 +57,16 @@ struct RunOptions {
   bool resume = false;
 };
 
+/// A command-line value as a TOML basic string (quotes and backslashes escaped).
+std::string toml_string(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
 void add_memory_limit_option(CLI::App& cmd) {
   cmd.add_option_function<std::string>(
@@ -466,11 +476,21 @@ int main(int argc, char** argv) {
   auto* exp = app.add_subcommand("experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." +
                                                    experiment_list());
   exp->add_option("name", exp_name, "Experiment name")->required();
+  std::string exp_scene_path;
+  exp->add_option("scene", exp_scene_path,
+                  "Jellyfish scene file laid over the experiment's scene (experiments that extend the jellyfish scene, "
+                  "e.g. convergence)")
+      ->check(CLI::ExistingFile);
   add_run_options(*exp, exp_opts, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
   std::string solver, re, grid;
   exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
   exp->add_option("--re", re, "Reynolds number (driven-cavity)");
   exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
+  std::string grids, cycles;
+  exp->add_option("--grids", grids, "Grids of a convergence study, coarsest first: NXxNY,... (convergence)")
+      ->type_name("LIST");
+  exp->add_option("--cycles", cycles, "Contraction cycles per run (convergence, hoover-miller, axisymmetric-vs-planar)")
+      ->type_name("N");
   std::string steady_tolerance;
   exp->add_option("--steady-tolerance", steady_tolerance,
                   "Stop when max|du/dt| L/U^2 falls below this (driven-cavity: cavity.steady_tolerance)");
@@ -540,12 +560,24 @@ int main(int argc, char** argv) {
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
       for (const RunOptions::Shorthand& s : {RunOptions::Shorthand{"solver", "solver", solver}, {"re", "re", re},
-                                             {"grid", "grid", grid},
+                                             {"grid", "grid", grid}, {"cycles", "cycles", cycles},
+                                             {"grids", "grids", grids.empty() ? grids : toml_string(grids)},
                                              {"steady-tolerance", "cavity.steady_tolerance", steady_tolerance}}) {
         if (!s.value.empty()) exp_opts.shorthands.push_back(s);
       }
       if (threads > 0) exp_opts.shorthands.push_back({"threads", "run.threads", std::to_string(threads)});
-      return run_experiment(js::experiments::find_experiment(exp_name), std::nullopt, exp_opts);
+      const js::experiments::Experiment& e = js::experiments::find_experiment(exp_name);
+      std::optional<js::io::Config> scene;
+      if (!exp_scene_path.empty()) {
+        if (e.base_path != "scenes/jellyfish.toml")
+          throw js::InputError("experiment '" + exp_name + "' takes no scene file ('" + exp_scene_path +
+                               "'): only experiments on the jellyfish scene do");
+        scene = js::io::Config::load(exp_scene_path);
+        if (scene->has("scene") && scene->string("scene") != "jellyfish")
+          throw js::InputError(exp_scene_path + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
+                               scene->string("scene") + "'");
+      }
+      return run_experiment(e, scene, exp_opts);
     }
     if (reference) {
       std::cout << js::scene::parameters_reference();

@@ -39,6 +39,7 @@ Experiment steering_experiment();
 Experiment obstacle_flow_experiment();
 Experiment hoover_miller_experiment();
 Experiment axisymmetric_vs_planar_experiment();
+Experiment convergence_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
@@ -50,7 +51,8 @@ const std::vector<Experiment>& all_experiments() {
                                                bar_hits_particle_experiment(), sph_stream_experiment(),
                                                mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
                                                steering_experiment(), obstacle_flow_experiment(),
-                                               hoover_miller_experiment(), axisymmetric_vs_planar_experiment()};
+                                               hoover_miller_experiment(), axisymmetric_vs_planar_experiment(),
+                                               convergence_experiment()};
   return list;
 }
 

@@ -26,6 +26,7 @@ struct HooverMillerRun {
   double re = 150.0;
   int grid = 256;
   int cycles = 3;
+  std::string muscles = "ib2d";  ///< "ib2d" (IB2d's fixed muscle stiffness) or "per-length" (the consistent variant)
 };
 
 HooverMillerRun read_hoover_miller(io::Config c) {
@@ -37,6 +38,8 @@ HooverMillerRun read_hoover_miller(io::Config c) {
   run.cycles = static_cast<int>(c.integer("cycles", 1, 100));
   jellyfish::HooverMillerSpec spec;
   spec.resolution = run.grid;
+  run.muscles = c.choice("muscles", {"ib2d", "per-length"});
+  spec.muscles_per_length = run.muscles == "per-length";
   run.bell = jellyfish::hoover_miller_bell(spec);
   c.set("duration=" + std::to_string(run.cycles));
   c.set("tank.cells=[" + std::to_string(spec.cells_x()) + ", " + std::to_string(spec.cells_y()) + "]");
@@ -44,6 +47,8 @@ HooverMillerRun read_hoover_miller(io::Config c) {
   run.settings = scene::read_swim_settings(c);
   if (run.settings.structures.size() != 1 || !run.settings.school.empty() || !run.settings.obstacles.empty())
     throw InputError("experiment hoover-miller needs exactly one object, of type \"ib2d\" (the bell), and no jellyfish");
+  // The consistent variant's bell: the same points, springs and schedule rows, its muscles per length.
+  if (spec.muscles_per_length) run.settings.structures[0].structure = run.bell.structure;
   return run;
 }
 
@@ -136,6 +141,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     fig["units"] = {{"length", "m"}, {"time", "s"}};
     fig["re"] = run.re;
     fig["grid"] = run.grid;
+    fig["muscles"] = run.muscles;
     fig["cells"] = {run.settings.tank.cells_x, run.settings.tank.cells_y};
     fig["markers"] = run.bell.structure.vertices.size();
     fig["cycle_displacements_m"] = per_cycle;

@@ -1,5 +1,8 @@
 #include "jellysim/jellyfish/fluidless.hpp"
 
+#include "jellysim/elastic/forces.hpp"
+#include "jellysim/elastic/spring_assembly.hpp"
+
 #include <cmath>
 
 namespace jellysim::jellyfish {
@@ -15,8 +18,31 @@ std::pair<double, double> cavity_area_and_rate(const std::vector<Vec2>& x, const
   return {0.5 * area, 0.5 * rate};
 }
 
+namespace {
+
+/// Adds half of each segment of a polyline of body points to both its ends' arc lengths.
+void add_arcs(const std::vector<Vec2>& x, const std::vector<int>& line, std::vector<double>& arc) {
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const auto a = static_cast<std::size_t>(line[k]), b = static_cast<std::size_t>(line[k + 1]);
+    const double half = 0.5 * norm(x[b] - x[a]);
+    arc[a] += half;
+    arc[b] += half;
+  }
+}
+
+}  // namespace
+
 FluidlessSystem::FluidlessSystem(Jellyfish& jellyfish, const FluidlessSettings& settings)
-    : jellyfish_(jellyfish), settings_(settings) {}
+    : jellyfish_(jellyfish), settings_(settings) {
+  if (jellyfish.spec().elastic_model != ElasticModel::continuum) return;
+  // Drag per unit length: each point's share of the bell and tentacle lines it lies on.
+  const elastic::Body& body = jellyfish.body();
+  std::vector<double> arc(body.points.size(), 0.0);
+  add_arcs(body.points.position, jellyfish.layout().umbrella, arc);
+  for (const std::vector<int>& strand : jellyfish.layout().tentacles) add_arcs(body.points.position, strand, arc);
+  point_drag_.resize(arc.size());
+  for (std::size_t p = 0; p < arc.size(); ++p) point_drag_[p] = settings.drag_kg_per_s_m2 * arc[p];
+}
 
 Eigen::Index FluidlessSystem::dimension() const {
   return 4 * static_cast<Eigen::Index>(jellyfish_.body().points.size());
@@ -56,8 +82,10 @@ void FluidlessSystem::compute_derivative(double t, const ode::Vector& y, ode::Ve
     x_[k] = {y[static_cast<Eigen::Index>(2 * k)], y[static_cast<Eigen::Index>(2 * k + 1)]};
     v_[k] = {y[static_cast<Eigen::Index>(2 * (n + k))], y[static_cast<Eigen::Index>(2 * (n + k) + 1)]};
   }
-  body.drag_coefficient = settings_.drag_kg_per_s;  // eq. 2.17 against still water
+  // Eq. 2.17 against still water: one κ_d per marker (thesis), or per unit length (continuum).
+  body.drag_coefficient = point_drag_.empty() ? settings_.drag_kg_per_s : 0.0;
   elastic::accumulate_forces(body, x_, v_, t, f_);
+  for (std::size_t k = 0; k < point_drag_.size(); ++k) f_[k] += elastic::drag_force(v_[k], {}, point_drag_[k]);
   // Eq. 8.1 in the slice: p = −α dA/dt, pushing each umbrella segment outward (away from the cavity).
   const std::vector<int>& ring = jellyfish_.layout().umbrella;
   const auto [area, rate] = cavity_area_and_rate(x_, v_, ring);
@@ -79,6 +107,33 @@ void FluidlessSystem::compute_derivative(double t, const ode::Vector& y, ode::Ve
     dydt[static_cast<Eigen::Index>(2 * (n + k))] = acc.x;
     dydt[static_cast<Eigen::Index>(2 * (n + k) + 1)] = acc.y;
   }
+}
+
+void FluidlessSystem::compute_jacobian(double t, const ode::Vector& y, ode::SparseMatrix& jac) const {
+  jellyfish_.actuate(t);
+  const elastic::Body& body = jellyfish_.body();
+  const std::size_t n = body.points.size();
+  x_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) x_[k] = {y[static_cast<Eigen::Index>(2 * k)], y[static_cast<Eigen::Index>(2 * k + 1)]};
+  const auto velocity = static_cast<Eigen::Index>(2 * n);  // first velocity row
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index k = 0; k < velocity; ++k) entries.emplace_back(k, velocity + k, 1.0);  // dx/dt = v
+  elastic::for_each_spring_jacobian_block(body, x_, [&](int a, int b, const Mat2& d) {
+    const double m = 1.0 / body.points.mass[static_cast<std::size_t>(a)];
+    const Eigen::Index r = velocity + 2 * a, c = 2 * b;
+    entries.emplace_back(r, c, m * d.xx);
+    entries.emplace_back(r, c + 1, m * d.xy);
+    entries.emplace_back(r + 1, c, m * d.yx);
+    entries.emplace_back(r + 1, c + 1, m * d.yy);
+  });
+  for (std::size_t p = 0; p < n; ++p) {
+    const double drag = (point_drag_.empty() ? settings_.drag_kg_per_s : point_drag_[p]) / body.points.mass[p];
+    const auto r = velocity + static_cast<Eigen::Index>(2 * p);
+    entries.emplace_back(r, r, -drag);
+    entries.emplace_back(r + 1, r + 1, -drag);
+  }
+  jac.resize(2 * velocity, 2 * velocity);
+  jac.setFromTriplets(entries.begin(), entries.end());
 }
 
 }  // namespace jellysim::jellyfish

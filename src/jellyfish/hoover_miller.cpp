@@ -75,7 +75,7 @@ HooverMillerBell hoover_miller_bell(const HooverMillerSpec& s) {
   for (int k = c; k + 1 < n; ++k) chain(k, k + 1);
   chain(0, c);
   out.first_muscle_spring = static_cast<int>(st.springs.size());
-  for (int k = 0; k < muscles; ++k) st.springs.push_back({n + k, n + muscles + k, s.muscle_stiffness, 0.0});
+  for (int k = 0; k < muscles; ++k) st.springs.push_back({n + k, n + muscles + k, s.muscle_spring_stiffness(), 0.0});
 
   // Non-invariant beams along each side and across the apex.
   const double k_beam = s.beam_stiffness / (ds * ds * ds);

@@ -140,6 +140,19 @@ void validate(const JellyfishSpec& s) {
   require(s.bending_factor >= 0, "bending_factor", "[0, inf)");
   require(s.tentacle_bending_factor >= 0, "tentacle_bending_factor", "[0, inf)");
   require(s.tentacle_volume_fraction > 0, "tentacle_volume_fraction", "(0, inf)");
+  const ContinuumMaterial& m = s.material;
+  require(m.stretching_n_per_m > 0 && std::isfinite(m.stretching_n_per_m), "stretching_stiffness", "(0, inf) N/m");
+  require(m.bending_n_m >= 0 && std::isfinite(m.bending_n_m), "bending_rigidity", "[0, inf) N·m");
+  require(m.muscle_n_per_m2 >= 0 && std::isfinite(m.muscle_n_per_m2), "muscle_stiffness", "[0, inf) N/m²");
+  require(m.tentacle_stretching_n_per_m > 0 && std::isfinite(m.tentacle_stretching_n_per_m),
+          "tentacle_stretching_stiffness", "(0, inf) N/m");
+  require(m.tentacle_bending_n_m >= 0 && std::isfinite(m.tentacle_bending_n_m), "tentacle_bending_rigidity", "[0, inf) N·m");
+  require(m.line_density_kg_per_m2 > 0 && std::isfinite(m.line_density_kg_per_m2), "line_density", "(0, inf) kg/m²");
+  require(m.tentacle_line_density_kg_per_m2 > 0 && std::isfinite(m.tentacle_line_density_kg_per_m2),
+          "tentacle_line_density", "(0, inf) kg/m²");
+  if (s.model == UmbrellaModel::mesh && s.elastic_model == ElasticModel::continuum)
+    throw std::invalid_argument("field 'jellyfish.model' = \"mesh\" is the thesis's per-spring lattice (Fig. 7.2 left): "
+                                "set jellyfish.elastic_model = \"thesis\" with it");
   require(s.frequency_hz > 0 && s.frequency_hz <= 100, "frequency", "(0, 100] Hz");
   require(s.gamma > 0 && s.gamma <= 1, "gamma", "(0, 1]");
   require(s.profile.contract_fraction > 0 && s.profile.contract_fraction < 1, "contract_fraction", "(0, 1)");
@@ -152,10 +165,79 @@ void validate(const JellyfishSpec& s) {
                                 "axis: the tilt must be 0 or 180 degrees");
 }
 
+namespace {
+
+/// The discrete constants of the slice's springs and points under either elastic model
+/// (docs/jellyfish.md, "Elastic models"). The thesis branch keeps §7.1's per-spring construction
+/// bit for bit; the continuum branch discretises material quantities per metre of depth.
+class SpringConstants {
+ public:
+  explicit SpringConstants(const JellyfishSpec& s) : s_(s) {}
+
+  /// A bell spring of rest length l: κ_l = S / l, or eq. 7.1's λ ϑ² / l.
+  double bell_spring(double l) const {
+    return continuum() ? s_.material.stretching_n_per_m / l : stiffness(s_.bell_modulus_pa, bell_area(), l);
+  }
+  /// A bell joint between segments l1 and l2: the discrete curvature is θ over the mean segment l̄,
+  /// so E = ½ B (θ/l̄)² l̄ gives κ_θ = B / l̄. Thesis: κ_θ = f κ_l l_r² at the marker spacing.
+  double bell_joint(double l1, double l2, double spacing) const {
+    if (continuum()) return s_.material.bending_n_m / (0.5 * (l1 + l2));
+    return s_.bending_factor * stiffness(s_.bell_modulus_pa, bell_area(), spacing) * spacing * spacing;
+  }
+  double tentacle_spring(double l) const {
+    return continuum() ? s_.material.tentacle_stretching_n_per_m / l
+                       : stiffness(s_.bell_modulus_pa, s_.tentacle_volume_fraction * bell_area(), l);
+  }
+  /// A tentacle joint between segments l1 and l2 (the thesis: at the tentacle spacing).
+  double tentacle_joint(double l1, double l2, double tentacle_spacing) const {
+    if (continuum()) return s_.material.tentacle_bending_n_m / (0.5 * (l1 + l2));
+    return s_.tentacle_bending_factor * tentacle_spring(tentacle_spacing) * tentacle_spacing * tentacle_spacing;
+  }
+  /// The joint where a tentacle leaves the bell, between the bell's last segment l_bell and the
+  /// tentacle's first l_tentacle: its half cells bend in series under the one moment there,
+  /// κ_θ = 1 / (½ l_bell / B + ½ l_tentacle / B_t) (B / l̄ when the two are alike).
+  double root_joint(double l_bell, double l_tentacle, double tentacle_spacing) const {
+    if (!continuum()) return tentacle_joint(l_bell, l_tentacle, tentacle_spacing);
+    const double compliance = 0.5 * l_bell / s_.material.bending_n_m + 0.5 * l_tentacle / s_.material.tentacle_bending_n_m;
+    return s_.material.bending_n_m > 0 && s_.material.tentacle_bending_n_m > 0 ? 1.0 / compliance : 0.0;
+  }
+  /// A muscle of uncontracted length L standing for a band of bell `band` high, `gap` from its
+  /// neighbouring muscles: κ = k_m band / L (its tension per unit strain is k_m band), or §7.1's
+  /// λ_m gap² / L.
+  double muscle(double band, double gap, double length) const {
+    if (continuum()) return s_.material.muscle_n_per_m2 * band / length;
+    return s_.muscle_modulus_pa > 0 ? stiffness(s_.muscle_modulus_pa, gap * gap, length) : 0.0;
+  }
+  /// The mass of a point standing for `arc` metres of bell or tentacle (thesis: one per marker).
+  double bell_mass(double arc) const { return continuum() ? s_.material.line_density_kg_per_m2 * arc : s_.point_mass_kg; }
+  double tentacle_mass(double arc) const {
+    return continuum() ? s_.material.tentacle_line_density_kg_per_m2 * arc : s_.point_mass_kg * s_.tentacle_volume_fraction;
+  }
+  /// C = κ_l l_r of the bell's springs, the ring jellyfish's hoop membrane stiffness.
+  double membrane() const { return continuum() ? s_.material.stretching_n_per_m : s_.bell_modulus_pa * bell_area(); }
+
+ private:
+  bool continuum() const { return s_.elastic_model == ElasticModel::continuum; }
+  double bell_area() const { return s_.thickness_m * s_.thickness_m; }  ///< A = ϑ² (§7.1)
+  const JellyfishSpec& s_;
+};
+
+/// Half of each neighbouring segment: the arc length a point of a polyline stands for.
+std::vector<double> arc_per_point(const std::vector<Vec2>& p) {
+  std::vector<double> arc(p.size(), 0.0);
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const double half = 0.5 * norm(p[i + 1] - p[i]);
+    arc[i] += half;
+    arc[i + 1] += half;
+  }
+  return arc;
+}
+
+}  // namespace
+
 Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   validate(spec_);
-  const JellyfishSpec& s = spec_;
-  const MarkerPlan plan = plan_markers(s);
+  const MarkerPlan plan = plan_markers(spec_);
   if (!(plan.markers <= kMaxMarkers)) {
     std::ostringstream why;
     why.precision(3);
@@ -163,112 +245,17 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
         << "): jellyfish.spacing is too small for its size";
     throw std::invalid_argument(why.str());
   }
-  const int m = static_cast<int>(plan.segments_per_side);
-  const double spacing = plan.spacing_m;
-  std::vector<Vec2> profile = bell_profile(s.diameter_m, s.height_m, m);
-  for (Vec2& p : profile) p = s.aperture_centre_m + rotated(p, s.tilt_rad);
-  const int n = static_cast<int>(profile.size());
-
-  // Umbrella: the subumbrellar string (§7.1).
-  const double area_bell = s.thickness_m * s.thickness_m;  // A = ϑ² for tangential springs
-  for (Vec2 p : profile) layout_.umbrella.push_back(own_body_.add_point(p, s.point_mass_kg));
-  layout_.apex = m;
-  const auto& u = layout_.umbrella;
-  auto add_spring = [&](int a, int b, double modulus, double area) {
-    const double l = norm(own_body_.points.position[b] - own_body_.points.position[a]);
-    own_body_.add_linear_spring(a, b, stiffness(modulus, area, l), l);
-    return static_cast<int>(own_body_.linear.size()) - 1;
-  };
-  auto add_joint = [&](int a, int b, int c, double linear_stiffness, double segment, double factor) {
-    if (factor > 0) own_body_.add_angular_spring(a, b, c, factor * linear_stiffness * segment * segment, kNaN);
-  };
-  if (s.model == UmbrellaModel::angular) {
-    for (int i = 0; i + 1 < n; ++i) add_spring(u[i], u[i + 1], s.bell_modulus_pa, area_bell);
-    for (int i = 1; i + 1 < n; ++i) add_joint(u[i - 1], u[i], u[i + 1], stiffness(s.bell_modulus_pa, area_bell, spacing), spacing, s.bending_factor);
-  } else {
-    // Fig. 7.2 left: a second (exumbrellar) row one spacing outside, quads with crossing diagonals.
-    const std::vector<Vec2> normals = outward_normals(profile);
-    const double depth = std::max(s.thickness_m, spacing);
-    for (int i = 0; i < n; ++i)
-      layout_.exumbrella.push_back(own_body_.add_point(profile[static_cast<std::size_t>(i)] + depth * normals[static_cast<std::size_t>(i)], s.point_mass_kg));
-    const auto& e = layout_.exumbrella;
-    for (int i = 0; i < n; ++i) {
-      add_spring(u[i], e[i], s.bell_modulus_pa, area_bell);
-      if (i + 1 == n) break;
-      add_spring(u[i], u[i + 1], s.bell_modulus_pa, area_bell);
-      add_spring(e[i], e[i + 1], s.bell_modulus_pa, area_bell);
-      add_spring(u[i], e[i + 1], s.bell_modulus_pa, area_bell);
-      add_spring(e[i], u[i + 1], s.bell_modulus_pa, area_bell);
-    }
-  }
-
-  // Subumbrellar muscles between opposing points, aperture first (§7.1).
-  const int muscles = std::max(1, m - 1);
-  std::vector<Vec2> mids;
-  for (int k = 0; k < muscles; ++k) mids.push_back(0.5 * (profile[static_cast<std::size_t>(k)] + profile[static_cast<std::size_t>(n - 1 - k)]));
-  for (int k = 0; k < muscles; ++k) {
-    // A = square of the mean distance to the neighbouring muscle springs (§7.1).
-    double gap = 0.0;
-    int count = 0;
-    if (k > 0) gap += norm(mids[static_cast<std::size_t>(k)] - mids[static_cast<std::size_t>(k - 1)]), ++count;
-    if (k + 1 < muscles) gap += norm(mids[static_cast<std::size_t>(k + 1)] - mids[static_cast<std::size_t>(k)]), ++count;
-    gap = count > 0 ? gap / count : spacing;
-    const int spring = add_spring(u[k], u[n - 1 - k], s.muscle_modulus_pa, gap * gap);
-    layout_.muscle_springs.push_back(spring);
-    layout_.muscle_uncontracted_m.push_back(own_body_.linear.rest_length[static_cast<std::size_t>(spring)]);
-    // Springs near the aperture re-expand more slowly (Fig. 7.5): exponent from p_aperture to 1.
-    ContractionProfile p = s.profile;
-    const double toward_apex = muscles > 1 ? static_cast<double>(k) / (muscles - 1) : 1.0;
-    p.expansion_exponent = s.aperture_expansion_exponent + (1.0 - s.aperture_expansion_exponent) * toward_apex;
-    layout_.muscle_profiles.push_back(p);
-    // The impulse starts at the margin and travels toward the apex (§6.2); each spring gets half
-    // of the largest delay of its band (§7.1).
-    layout_.muscle_delay_s.push_back(0.5 * s.neural_delay_s * static_cast<double>(k) / m);
-  }
-  controllers_.resize(layout_.muscle_springs.size());
-
-  // Tentacles hang from both aperture tips, away from the apex.
-  const int tentacle_points = static_cast<int>(plan.tentacle_points);
-  const double t_spacing = tentacle_points > 0 ? s.tentacle_length_m / tentacle_points : 0.0;
-  const double area_tentacle = s.tentacle_volume_fraction * area_bell;
-  const Vec2 down = -initial_axis();
-  for (int side = 0; side < 2 && tentacle_points > 0; ++side) {
-    const int tip = side == 0 ? u.front() : u.back();
-    const int inner = side == 0 ? u[1] : u[static_cast<std::size_t>(n - 2)];
-    std::vector<int> strand{tip};
-    for (int k = 1; k <= tentacle_points; ++k)
-      strand.push_back(own_body_.add_point(own_body_.points.position[static_cast<std::size_t>(tip)] + (k * t_spacing) * down, s.point_mass_kg * s.tentacle_volume_fraction));
-    const double kt = stiffness(s.bell_modulus_pa, area_tentacle, t_spacing);
-    for (std::size_t k = 0; k + 1 < strand.size(); ++k) add_spring(strand[k], strand[k + 1], s.bell_modulus_pa, area_tentacle);
-    add_joint(inner, tip, strand[1], kt, t_spacing, s.tentacle_bending_factor);
-    for (std::size_t k = 1; k + 1 < strand.size(); ++k)
-      add_joint(strand[k - 1], strand[k], strand[k + 1], kt, t_spacing, s.tentacle_bending_factor);
-    layout_.tentacles.push_back(strand);
-  }
-  if (s.rings) {
-    // Mirror images: umbrella k ↔ n − 1 − k (same for the mesh's outer row), left tentacle ↔ right.
-    std::vector<int> partner(own_body_.points.size());
-    for (std::size_t p = 0; p < partner.size(); ++p) partner[p] = static_cast<int>(p);
-    auto pair_rows = [&partner](const std::vector<int>& row) {
-      for (std::size_t k = 0; k < row.size(); ++k) partner[static_cast<std::size_t>(row[k])] = row[row.size() - 1 - k];
-    };
-    pair_rows(u);
-    pair_rows(layout_.exumbrella);
-    if (layout_.tentacles.size() == 2)
-      for (std::size_t k = 1; k < layout_.tentacles[0].size(); ++k) {
-        partner[static_cast<std::size_t>(layout_.tentacles[0][k])] = layout_.tentacles[1][k];
-        partner[static_cast<std::size_t>(layout_.tentacles[1][k])] = layout_.tentacles[0][k];
-      }
-    std::vector<std::vector<int>> rows{u};
-    if (!layout_.exumbrella.empty()) rows.push_back(layout_.exumbrella);
-    // C = κ_l l_r of the umbrella springs: λ A (eq. 7.1), per metre of the ring's circumference.
-    layout_.hoop_springs = make_rings(own_body_, s.aperture_centre_m.x, spacing, partner, rows,
-                                      layout_.muscle_springs, s.bell_modulus_pa * area_bell);
-  }
+  std::vector<Vec2> profile = bell_profile(spec_.diameter_m, spec_.height_m, static_cast<int>(plan.segments_per_side));
+  for (Vec2& p : profile) p = spec_.aperture_centre_m + rotated(p, spec_.tilt_rad);
+  build_umbrella(profile, plan.spacing_m);
+  build_muscles(profile, plan.spacing_m);
+  build_tentacles(static_cast<int>(plan.tentacle_points));
+  if (spec_.rings) make_ring_jellyfish(plan.spacing_m);
   base_stiffness_ = own_body_.linear.stiffness;
   base_joint_stiffness_ = own_body_.angular.stiffness;
   base_rest_angle_ = own_body_.angular.rest_angle;
   // Umbrella joints belong to the left (before the apex) or the right side; tentacle joints to neither.
+  const int n = static_cast<int>(profile.size());
   for (std::size_t a = 0; a < own_body_.angular.size(); ++a) {
     const int i = own_body_.angular.i[a], j = own_body_.angular.j[a], k = own_body_.angular.k[a];
     const bool umbrella = i < n && j < n && k < n;
@@ -276,6 +263,136 @@ Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   }
   point_count_ = own_body_.points.size();
   actuate(0.0);
+}
+
+int Jellyfish::add_spring(int a, int b, double stiffness_n_per_m) {
+  const double l = norm(own_body_.points.position[static_cast<std::size_t>(b)] - own_body_.points.position[static_cast<std::size_t>(a)]);
+  own_body_.add_linear_spring(a, b, stiffness_n_per_m, l);
+  return static_cast<int>(own_body_.linear.size()) - 1;
+}
+
+double Jellyfish::distance(int a, int b) const {
+  return norm(own_body_.points.position[static_cast<std::size_t>(b)] - own_body_.points.position[static_cast<std::size_t>(a)]);
+}
+
+void Jellyfish::build_umbrella(const std::vector<Vec2>& profile, double spacing) {
+  // The subumbrellar string (§7.1), left tip → apex → right tip.
+  const SpringConstants k(spec_);
+  const std::vector<double> arc = arc_per_point(profile);
+  for (std::size_t i = 0; i < profile.size(); ++i) layout_.umbrella.push_back(own_body_.add_point(profile[i], k.bell_mass(arc[i])));
+  layout_.apex = static_cast<int>(profile.size() / 2);
+  const auto& u = layout_.umbrella;
+  const int n = static_cast<int>(u.size());
+  if (spec_.model == UmbrellaModel::angular) {
+    for (int i = 0; i + 1 < n; ++i) add_spring(u[i], u[i + 1], k.bell_spring(distance(u[i], u[i + 1])));
+    for (int i = 1; i + 1 < n; ++i) {
+      const double joint = k.bell_joint(distance(u[i - 1], u[i]), distance(u[i], u[i + 1]), spacing);
+      if (joint > 0) own_body_.add_angular_spring(u[i - 1], u[i], u[i + 1], joint, kNaN);
+    }
+    return;
+  }
+  // Fig. 7.2 left (thesis model only): a second (exumbrellar) row one spacing outside, quads with
+  // crossing diagonals.
+  const std::vector<Vec2> normals = outward_normals(profile);
+  const double depth = std::max(spec_.thickness_m, spacing);
+  for (int i = 0; i < n; ++i)
+    layout_.exumbrella.push_back(own_body_.add_point(profile[static_cast<std::size_t>(i)] + depth * normals[static_cast<std::size_t>(i)], spec_.point_mass_kg));
+  const auto& e = layout_.exumbrella;
+  auto spring = [&](int a, int b) { add_spring(a, b, k.bell_spring(distance(a, b))); };
+  for (int i = 0; i < n; ++i) {
+    spring(u[i], e[i]);
+    if (i + 1 == n) break;
+    spring(u[i], u[i + 1]);
+    spring(e[i], e[i + 1]);
+    spring(u[i], e[i + 1]);
+    spring(e[i], u[i + 1]);
+  }
+}
+
+void Jellyfish::build_muscles(const std::vector<Vec2>& profile, double spacing) {
+  // Subumbrellar muscles between opposing points, aperture first (§7.1), up to the point next to
+  // the apex. Each stands for a band of bell height: from halfway to the muscle below (the
+  // aperture's from the aperture itself) to halfway to the next pair of points above.
+  const SpringConstants k(spec_);
+  const int n = static_cast<int>(profile.size()), m = layout_.apex;
+  const int muscles = std::max(1, m - 1);
+  std::vector<Vec2> mids;  // the muscles' midpoints on the axis, then the rest up to the apex
+  for (int j = 0; j <= m; ++j) mids.push_back(0.5 * (profile[static_cast<std::size_t>(j)] + profile[static_cast<std::size_t>(n - 1 - j)]));
+  for (int j = 0; j < muscles; ++j) {
+    const auto at = static_cast<std::size_t>(j);
+    // Thesis: A = square of the mean distance to the neighbouring muscle springs.
+    double gap = 0.0;
+    int count = 0;
+    if (j > 0) gap += norm(mids[at] - mids[at - 1]), ++count;
+    if (j + 1 < muscles) gap += norm(mids[at + 1] - mids[at]), ++count;
+    gap = count > 0 ? gap / count : spacing;
+    const double band = 0.5 * ((j > 0 ? norm(mids[at] - mids[at - 1]) : 0.0) + norm(mids[at + 1] - mids[at]));
+    const int a = layout_.umbrella[at], b = layout_.umbrella[static_cast<std::size_t>(n - 1 - j)];
+    const int spring = add_spring(a, b, k.muscle(band, gap, distance(a, b)));
+    layout_.muscle_springs.push_back(spring);
+    layout_.muscle_uncontracted_m.push_back(own_body_.linear.rest_length[static_cast<std::size_t>(spring)]);
+    // Springs near the aperture re-expand more slowly (Fig. 7.5): exponent from p_aperture to 1.
+    ContractionProfile p = spec_.profile;
+    const double toward_apex = muscles > 1 ? static_cast<double>(j) / (muscles - 1) : 1.0;
+    p.expansion_exponent = spec_.aperture_expansion_exponent + (1.0 - spec_.aperture_expansion_exponent) * toward_apex;
+    layout_.muscle_profiles.push_back(p);
+    // The impulse starts at the margin and travels toward the apex (§6.2); each spring gets half
+    // of the largest delay of its band (§7.1).
+    layout_.muscle_delay_s.push_back(0.5 * spec_.neural_delay_s * static_cast<double>(j) / m);
+  }
+  controllers_.resize(layout_.muscle_springs.size());
+}
+
+void Jellyfish::build_tentacles(int tentacle_points) {
+  // Two strands hang from the aperture tips, away from the apex; a joint at each tip holds the
+  // strand's angle to the bell's last segment.
+  if (tentacle_points <= 0) return;
+  const SpringConstants k(spec_);
+  const auto& u = layout_.umbrella;
+  const int n = static_cast<int>(u.size());
+  const double t_spacing = spec_.tentacle_length_m / tentacle_points;
+  const Vec2 down = -initial_axis();
+  for (int side = 0; side < 2; ++side) {
+    const int tip = side == 0 ? u.front() : u.back();
+    const int inner = side == 0 ? u[1] : u[static_cast<std::size_t>(n - 2)];
+    const Vec2 root = own_body_.points.position[static_cast<std::size_t>(tip)];
+    std::vector<int> strand{tip};
+    for (int j = 1; j <= tentacle_points; ++j)
+      strand.push_back(own_body_.add_point(root + (j * t_spacing) * down,
+                                           k.tentacle_mass(j < tentacle_points ? t_spacing : 0.5 * t_spacing)));
+    own_body_.points.mass[static_cast<std::size_t>(tip)] += spec_.elastic_model == ElasticModel::continuum ? k.tentacle_mass(0.5 * t_spacing) : 0.0;
+    for (std::size_t j = 0; j + 1 < strand.size(); ++j)
+      add_spring(strand[j], strand[j + 1], k.tentacle_spring(distance(strand[j], strand[j + 1])));
+    auto joint = [&](int a, int b, int c, double kappa) {
+      if (kappa > 0) own_body_.add_angular_spring(a, b, c, kappa, kNaN);
+    };
+    joint(inner, tip, strand[1], k.root_joint(distance(inner, tip), distance(tip, strand[1]), t_spacing));
+    for (std::size_t j = 1; j + 1 < strand.size(); ++j)
+      joint(strand[j - 1], strand[j], strand[j + 1],
+            k.tentacle_joint(distance(strand[j - 1], strand[j]), distance(strand[j], strand[j + 1]), t_spacing));
+    layout_.tentacles.push_back(strand);
+  }
+}
+
+void Jellyfish::make_ring_jellyfish(double spacing) {
+  // Mirror images: umbrella k ↔ n − 1 − k (same for the mesh's outer row), left tentacle ↔ right.
+  std::vector<int> partner(own_body_.points.size());
+  for (std::size_t p = 0; p < partner.size(); ++p) partner[p] = static_cast<int>(p);
+  auto pair_rows = [&partner](const std::vector<int>& row) {
+    for (std::size_t k = 0; k < row.size(); ++k) partner[static_cast<std::size_t>(row[k])] = row[row.size() - 1 - k];
+  };
+  pair_rows(layout_.umbrella);
+  pair_rows(layout_.exumbrella);
+  if (layout_.tentacles.size() == 2)
+    for (std::size_t k = 1; k < layout_.tentacles[0].size(); ++k) {
+      partner[static_cast<std::size_t>(layout_.tentacles[0][k])] = layout_.tentacles[1][k];
+      partner[static_cast<std::size_t>(layout_.tentacles[1][k])] = layout_.tentacles[0][k];
+    }
+  std::vector<std::vector<int>> rows{layout_.umbrella};
+  if (!layout_.exumbrella.empty()) rows.push_back(layout_.exumbrella);
+  // C = κ_l l_r of the umbrella springs (eq. 7.1's λ A, or S), per metre of the ring's circumference.
+  layout_.hoop_springs = make_rings(own_body_, spec_.aperture_centre_m.x, spacing, partner, rows,
+                                    layout_.muscle_springs, SpringConstants(spec_).membrane());
 }
 
 void Jellyfish::move_into(elastic::Body& shared) {

@@ -110,9 +110,13 @@ ParameterTable make_jellyfish_study_rules() {
            "sweeps: runs per frequency, the bell shifted along its axis by k/placements of a cell (the coarse "
            "tank's distance is chaotic: one run is one sample, docs/jellyfish.md)"),
       rule("sweep.threads", Type::integer, "", Range::closed(0, 64), "sweeps: worker threads; 0: one per core"),
-      rule("fluidless.drag", Type::number, "kg/s", non_negative, "κ_d per marker (per metre of depth), eq. 2.17"),
+      rule("fluidless.drag", Type::number, "kg/s", non_negative,
+           "κ_d per marker (per metre of depth), eq. 2.17 (jellyfish.elastic_model = thesis)"),
+      rule("fluidless.drag_per_length", Type::number, "kg/(s·m²)", non_negative,
+           "κ_d per metre of bell and tentacle (jellyfish.elastic_model = continuum)"),
       rule("fluidless.pressure_factor", Type::number, "Pa·s/m²", non_negative, "α of the cavity pressure p = −α dA/dt"),
-      rule("fluidless.point_mass", Type::number, "kg", positive, "mass per marker (per metre of depth)"),
+      rule("fluidless.point_mass", Type::number, "kg", positive,
+           "mass per marker (per metre of depth; thesis model: the continuum's is jellyfish.line_density)"),
       rule("fluidless.integrator", Type::choice, "", {}, "time integrator (docs/integrators.md)", ode::integrator_names()),
       rule("fluidless.dt", Type::number, "s", positive, "step; the first step when adaptive"),
       rule("fluidless.adaptive", Type::boolean, "", {}, "step-size control by the error estimate"),
@@ -202,6 +206,7 @@ FluidlessScene read_fluidless(const io::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   FluidlessScene s;
   s.model.drag_kg_per_s = r.number("fluidless.drag");
+  s.model.drag_kg_per_s_m2 = r.number("fluidless.drag_per_length");
   s.model.pressure_factor = r.number("fluidless.pressure_factor");
   s.point_mass = r.number("fluidless.point_mass");
   s.time.integrator = r.choice("fluidless.integrator");

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
@@ -33,6 +34,10 @@ const Range kModulus{0.0, 1e9, true, false};          ///< Pa: up to stiff plast
 const Range kModulusOrZero{0.0, 1e9, false, false};
 const Range kTankSize{0.0, 100.0, true, false};       ///< m
 const Range kStiffness{0.0, 1e9, true, false};        ///< N/m of an obstacle's tethers
+const Range kMaterial{0.0, 1e9, true, false};         ///< continuum material quantities (N/m, N·m, kg/m²)
+const Range kMaterialOrZero{0.0, 1e9, false, false};
+/// k_m of the continuum model (N/m² per metre of bell height): docs/jellyfish.md, "Elastic models".
+constexpr const char* kDefaultMuscleStiffness = "427.0";
 const Range kAny{};
 
 fluid::BoundaryType read_boundary(const std::string& name) { return *fluid::boundary_type_from_string(name); }
@@ -40,9 +45,11 @@ fluid::BoundaryType read_boundary(const std::string& name) { return *fluid::boun
 using namespace param;
 
 const char* const kPreamble =
-    "# The built-in jellyfish: thesis Figure 8.21's 4 cm bell (§7.1, §8.2.4), resolved by 16 fluid cells\n"
-    "# across its diameter, in a 24 cm × 32 cm tank with free-slip walls (wide and tall enough that a tank\n"
-    "# twice as wide or twice as tall changes the distance swum by less than 0.2 %, docs/jellyfish.md).\n"
+    "# The built-in jellyfish: thesis Figure 8.21's 4 cm bell (§7.1, §8.2.4), resolved by 64 fluid cells\n"
+    "# across its diameter (the coarsest grid whose distance per cycle is within 10 % of the converged one,\n"
+    "# docs/convergence.md), in a 24 cm × 48 cm tank with free-slip walls (a tank 1.5 times as wide or\n"
+    "# 4/3 as tall changes the distance per cycle by less than 0.5 %). The bell is a continuum\n"
+    "# (jellyfish.elastic_model): the same body on any grid.\n"
     "# The thesis's own coarse tank (80 cm, 60 × 60 cells: 3 cells across the bell) is\n"
     "# scenes/jellyfish-thesis.toml. SI units throughout.\n"
     "# The thesis gives lengths in cm and ν = 0.1304 without units; we read it as cm²/s\n"
@@ -63,19 +70,21 @@ const char* const kPreamble =
 ParameterTable make_jellyfish_scene() {
   std::vector<Parameter> p{
       {"scene", Type::text, "\"jellyfish\"", "", {}, {}, 0, "the scene kind"},
-      number("duration", "14.285714285714286", "s", kPositive, "simulated time: 10 contraction cycles at 0.7 Hz"),
+      number("duration", "7.142857142857143", "s", kPositive,
+             "simulated time: 5 contraction cycles at 0.7 Hz (the convergence study's; 10 reach the lid)"),
       {"objects", Type::tables, "[]", "", {}, {}, 0, "more jellyfish, rigid obstacles and IB2d structures, as [[objects]] tables (docs/scenes.md)"},
 
       number("tank.width", "0.24", "m", kTankSize, "six bell diameters"),
-      number("tank.height", "0.32", "m", kTankSize, "tank height"),
-      {"tank.cells", Type::integers, "[96, 128]", "", Range::closed(4, 4096), {}, 2,
-       "fluid cells along x and y [nx, ny]: 2.5 mm, 16 across the bell"},
-      choice("tank.solver", "eulerian", fluid::fluid_solver_names(),
-             "eulerian (§4.1) or semi-lagrangian (Stam, §4.2: more diffusive, docs/jellyfish.md)"),
+      number("tank.height", "0.48", "m", kTankSize, "tank height: five cycles and the wake below (docs/convergence.md)"),
+      {"tank.cells", Type::integers, "[384, 768]", "", Range::closed(4, 4096), {}, 2,
+       "fluid cells along x and y [nx, ny]: 0.625 mm, 64 across the bell, the coarsest grid within 10 % of the "
+       "converged distance per cycle (docs/convergence.md)"},
+      choice("tank.solver", "semi-lagrangian", fluid::fluid_solver_names(),
+             "semi-lagrangian (Stam, §4.2, with tank.advection) or eulerian (§4.1, with tank.convection; docs/jellyfish.md)"),
       choice("tank.convection", "donor-cell", fluid::convection_scheme_names(),
              "Eulerian convection: the thesis's γ blend, or limited second order (koren, van-leer; docs/fluids.md)"),
-      choice("tank.advection", "linear", fluid::advection_scheme_names(),
-             "semi-Lagrangian advection: the thesis's linear, or second order (maccormack, bfecc, cubic)"),
+      choice("tank.advection", "maccormack", fluid::advection_scheme_names(),
+             "semi-Lagrangian advection: second order (maccormack, bfecc, cubic) or the thesis's linear"),
       choice("tank.pressure_solver", "fft", fluid::pressure_solver_names(),
              "fft is exact and fastest on uniform grids; direct: sparse Cholesky"),
       number("tank.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
@@ -110,14 +119,32 @@ ParameterTable make_jellyfish_scene() {
              "angular: string of points with angular springs (Fig. 7.2 right); mesh: Fig. 7.2 left"),
       number("jellyfish.spacing", "0.0", "m", kNonNegative, "marker spacing; 0: Peskin's rule, half a fluid cell"),
       integer("jellyfish.min_segments_per_side", "6", 2, 1000, "at least this many umbrella springs from aperture to apex"),
+      choice("jellyfish.elastic_model", "continuum", {"continuum", "thesis"},
+             "continuum: springs from the material quantities below, the same body at any marker spacing; thesis: "
+             "per spring as §7.1 builds it (bell_modulus ... tentacle_bending_factor), which changes with the "
+             "spacing (docs/jellyfish.md, \"Elastic models\")"),
+      number("jellyfish.stretching_stiffness", "2.6685", "N/m", kMaterial,
+             "continuum: the bell's tension per unit strain per metre of depth (a plate: E·h)"),
+      number("jellyfish.bending_rigidity", "4.0e-5", "N·m", kMaterialOrZero,
+             "continuum: the bell's bending moment per unit curvature per metre of depth (a plate: E·h³/12)"),
+      number("jellyfish.muscle_stiffness", kDefaultMuscleStiffness, "N/m²", kMaterialOrZero,
+             "continuum: the muscle layer's tension per unit strain, per metre of bell height and of depth"),
+      number("jellyfish.tentacle_stretching_stiffness", "8.0055", "N/m", kMaterial,
+             "continuum: a tentacle's tension per unit strain per metre of depth"),
+      number("jellyfish.tentacle_bending_rigidity", "1.09e-5", "N·m", kMaterialOrZero,
+             "continuum: a tentacle's bending moment per unit curvature per metre of depth"),
+      number("jellyfish.line_density", "0.8166", "kg/m²", kMaterial,
+             "continuum: the bell's mass per metre of arc and of depth (the fluid-free model; coupled markers are massless)"),
+      number("jellyfish.tentacle_line_density", "2.571", "kg/m²", kMaterial,
+             "continuum: a tentacle's mass per metre of length and of depth (the fluid-free model)"),
       number("jellyfish.bell_modulus", "1.186e6", "Pa", kModulus,
-             "λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
-      number("jellyfish.muscle_modulus", "4.0e5", "Pa", kModulusOrZero, "λ of the circumferential muscle (§7.1)"),
-      number("jellyfish.bending_factor", "10.0", "", kNonNegative, "umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
+             "thesis: λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
+      number("jellyfish.muscle_modulus", "4.0e5", "Pa", kModulusOrZero, "thesis: λ of the circumferential muscle (§7.1)"),
+      number("jellyfish.bending_factor", "10.0", "", kNonNegative, "thesis: umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
       number("jellyfish.tentacle_volume_fraction", "3.0", "", kPositive,
-             "tentacle springs' volume relative to the umbrella's (thesis: 0.01, stretches > 100 %)"),
+             "thesis: tentacle springs' volume relative to the umbrella's (thesis: 0.01, stretches > 100 %)"),
       number("jellyfish.tentacle_bending_factor", "1.0", "", kNonNegative,
-             "tentacle angular springs: κ_θ = factor · κ_l · l_r²"),
+             "thesis: tentacle angular springs: κ_θ = factor · κ_l · l_r²"),
       number("jellyfish.frequency", "0.7", "Hz", Range{0.0, 5.0, true, false}, "contractions per second", {0.1, 3.0}),
       number("jellyfish.gamma", "0.56", "", Range{0.0, 1.0, true, false}, "contracted rest length fraction γ (eq. 7.5)", {0.3, 1.0}),
       choice("jellyfish.contraction", "hermite", jellyfish::contraction_shape_names(), "contraction function (§7.1, Fig. 6.10)"),
@@ -178,6 +205,32 @@ ParameterTable make_jellyfish_scene() {
   return ParameterTable("jellyfish", kPreamble, std::move(p));
 }
 
+/// The material fields of each elastic model (docs/jellyfish.md, "Elastic models").
+constexpr const char* kContinuumFields[] = {"stretching_stiffness", "bending_rigidity", "muscle_stiffness",
+                                            "tentacle_stretching_stiffness", "tentacle_bending_rigidity",
+                                            "line_density", "tentacle_line_density"};
+constexpr const char* kThesisFields[] = {"bell_modulus", "muscle_modulus", "bending_factor", "tentacle_volume_fraction",
+                                         "tentacle_bending_factor"};
+
+/// A material field of the other elastic model set to anything but its default would be ignored
+/// silently: refused, naming both (a contradiction, issue 23).
+void refuse_other_models_fields(const Reader& r, jellyfish::ElasticModel model) {
+  const bool continuum = model == jellyfish::ElasticModel::continuum;
+  const std::span<const char* const> ignored = continuum ? std::span<const char* const>(kThesisFields)
+                                                         : std::span<const char* const>(kContinuumFields);
+  for (const char* field : ignored) {
+    const std::string key = std::string("jellyfish.") + field;
+    const double value = r.number(key);
+    if (value == std::stod(r.table().at(key).value)) continue;
+    throw InputError("field '" + key + "' = " + io::format_number(value) + " belongs to jellyfish.elastic_model = \"" +
+                     (continuum ? "thesis" : "continuum") + "\", but the model is \"" + (continuum ? "continuum" : "thesis") +
+                     "\": set jellyfish.elastic_model = \"" + (continuum ? "thesis" : "continuum") + "\" or use " +
+                     (continuum ? "stretching_stiffness, bending_rigidity, muscle_stiffness and the tentacle_ fields"
+                                : "bell_modulus, muscle_modulus, bending_factor and the tentacle_ fields") +
+                     " (docs/jellyfish.md, \"Elastic models\")");
+  }
+}
+
 /// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
 jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::TankSpec& t) {
   const Reader r(c, jellyfish_scene());
@@ -198,6 +251,17 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
   const double spacing = r.number("jellyfish.spacing");
   j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
   j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
+  j.elastic_model = r.choice("jellyfish.elastic_model") == "thesis" ? jellyfish::ElasticModel::thesis
+                                                                    : jellyfish::ElasticModel::continuum;
+  refuse_other_models_fields(r, j.elastic_model);
+  jellyfish::ContinuumMaterial& m = j.material;
+  m.stretching_n_per_m = r.number("jellyfish.stretching_stiffness");
+  m.bending_n_m = r.number("jellyfish.bending_rigidity");
+  m.muscle_n_per_m2 = r.number("jellyfish.muscle_stiffness");
+  m.tentacle_stretching_n_per_m = r.number("jellyfish.tentacle_stretching_stiffness");
+  m.tentacle_bending_n_m = r.number("jellyfish.tentacle_bending_rigidity");
+  m.line_density_kg_per_m2 = r.number("jellyfish.line_density");
+  m.tentacle_line_density_kg_per_m2 = r.number("jellyfish.tentacle_line_density");
   j.bell_modulus_pa = r.number("jellyfish.bell_modulus");
   j.muscle_modulus_pa = r.number("jellyfish.muscle_modulus");
   j.bending_factor = r.number("jellyfish.bending_factor");
@@ -383,15 +447,15 @@ jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::strin
   std::optional<std::array<int, 2>> muscles;  ///< a generated model's muscle springs
   if (o.has("files") == o.has("model"))
     throw InputError(where + ": an ib2d object needs exactly one of 'files' = \"path/stem\" (IB2d's files) or "
-                             "'model' = \"hoover-miller\"");
+                             "'model' = \"hoover-miller\" (or \"hoover-miller-consistent\", its muscles per unit length)");
   if (o.has("files")) {
     if (o.has("resolution")) throw InputError(where + ": 'resolution' goes with 'model', not with 'files'");
     const std::string stem = o.string("files");
     if (stem.empty()) throw InputError(where + ": field 'files' is empty; give the path and stem, e.g. \"ib2d/jelly256\"");
     spec.structure = io::read_ib2d_structure(stem);
   } else {
-    o.choice("model", {"hoover-miller"});
     jellyfish::HooverMillerSpec hm;
+    hm.muscles_per_length = o.choice("model", {"hoover-miller", "hoover-miller-consistent"}) == "hoover-miller-consistent";
     // By default IB2d's N of the tank's grid: mesh width 8/N m.
     if (o.has("resolution")) {
       hm.resolution = static_cast<int>(o.integer("resolution", 16, 4096));

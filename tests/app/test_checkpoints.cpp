@@ -21,6 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using jellysim::testing::fresh_scratch_dir;
+using jellysim::testing::kPreviewGrid;
 using jellysim::testing::read_text_file;
 using jellysim::testing::run_jellysim;
 using jellysim::testing::spawn_jellysim;
@@ -93,35 +94,37 @@ void expect_resumed_run_is_uninterrupted_run(const std::string& name, const std:
   fs::remove_all(resumed);
 }
 
-// The built-in scene: the Eulerian solver on the half tank (the mirror symmetry), FFT pressure,
-// the semi-implicit coupling; VTK files per frame, their .pvd collection continued.
+// The built-in scene (on the preview grid) with the Eulerian solver on the half tank (the mirror
+// symmetry), FFT pressure, the semi-implicit coupling; VTK files per frame, their .pvd collection
+// continued.
 TEST(Checkpoints, AKilledRunResumesToTheUninterruptedRunsBytes) {
-  expect_resumed_run_is_uninterrupted_run("builtin", "--duration 0.6 --set output.pictures=false", 0.2, 9);
+  expect_resumed_run_is_uninterrupted_run(
+      "builtin", std::string("--duration 0.6 --set output.pictures=false --set tank.solver=eulerian") + kPreviewGrid, 0.2, 9);
 }
 
-// Every history a step reads: the second-order semi-Lagrangian step's last velocities, multigrid
-// pressure solves started from extrapolated and last pressures, the mobility matrix kept between
-// steps, the whole tank without symmetry, tracers drawn in pictures.
+// Every history a step reads: the second-order semi-Lagrangian step's last velocities (the built-in
+// fluid), multigrid pressure solves started from extrapolated and last pressures, the mobility
+// matrix kept between steps, the whole tank without symmetry, tracers drawn in pictures.
 TEST(Checkpoints, HistoriesOfTheSolversSurviveAResume) {
   expect_resumed_run_is_uninterrupted_run(
       "histories",
-      "--duration 0.5 --set tank.solver=semi-lagrangian --set tank.advection=maccormack --set tank.pressure_solver=multigrid "
-      "--set tank.symmetry=none --set coupling.mobility_rebuild=0.5 --set tank.tracers_per_side=10 "
-      "--set output.picture_every=5",
+      std::string("--duration 0.5 --set tank.solver=semi-lagrangian --set tank.advection=maccormack "
+                  "--set tank.pressure_solver=multigrid --set tank.symmetry=none --set coupling.mobility_rebuild=0.5 "
+                  "--set tank.tracers_per_side=10 --set output.picture_every=5") + kPreviewGrid,
       0.15, 8);
 }
 
 TEST(Checkpoints, WhatCannotBeResumedIsAnInputError) {
   const fs::path dir = fresh_scratch_dir("resume_refused");
   // A finished run has no checkpoint.
-  ASSERT_EQ(run_jellysim("simulate --duration 0.1 --set output.pictures=false --quiet --checkpoint-every 0.05 --out " +
-                         dir.string()).exit_code, 0);
+  ASSERT_EQ(run_jellysim(std::string("simulate --duration 0.1 --set output.pictures=false --quiet --checkpoint-every 0.05") +
+                         kPreviewGrid + " --out " + dir.string()).exit_code, 0);
   jellysim::testing::CliResult r = run_jellysim("simulate --resume " + dir.string() + " --quiet");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("no checkpoint there"), std::string::npos) << r.output;
   // A damaged checkpoint (one byte changed) is refused by its checksum.
   const pid_t pid = spawn_jellysim({"simulate", "--duration", "2", "--set", "output.pictures=false", "--quiet",
-                                    "--checkpoint-every", "0.05", "--out", dir.string()});
+                                    "--set", "tank.cells=[96,192]", "--checkpoint-every", "0.05", "--out", dir.string()});
   ASSERT_GT(pid, 0);
   const bool checkpointed = wait_for(dir / "checkpoint.jellysim", pid);
   ::kill(pid, SIGKILL);

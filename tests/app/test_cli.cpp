@@ -37,9 +37,9 @@ TEST(Cli, HelpDocumentsCommands) {
 TEST(Cli, EverySetExampleInTheHelpRuns) {
   const std::regex example(R"(--set ([a-z_.]+=[^\s)`]+))");
   const std::pair<std::string, std::string> commands[] = {
-      {"run", "run --duration 0.1"},
-      {"simulate", "simulate --duration 0.1"},
-      {"sweep", "sweep --duration 0.1"},
+      {"run", std::string("run --duration 0.1") + jellysim::testing::kPreviewGrid},
+      {"simulate", std::string("simulate --duration 0.1") + jellysim::testing::kPreviewGrid},
+      {"sweep", "sweep --duration 0.1 --set tank.cells=[96,256]"},
       {"experiment", "experiment swinging-bar --duration 0.5"},
   };
   for (const auto& [command, run_args] : commands) {
@@ -425,7 +425,8 @@ TEST(Cli, CommandsOtherThanBatchRefuseSeveralMpiRanks) {
   const Result sweep = run_cli("sweep --duration 0.1 --quiet --out " + dir.string());
   const Result simulate = run_cli("simulate --duration 0.1 --quiet --out " + dir.string());
   ::setenv("OMPI_COMM_WORLD_SIZE", "1", 1);
-  const Result alone = run_cli("simulate --duration 0.05 --set output.pictures=false --quiet --out " + dir.string());
+  const Result alone = run_cli(std::string("simulate --duration 0.05 --set output.pictures=false --quiet") +
+                               jellysim::testing::kPreviewGrid + " --out " + dir.string());
   ::unsetenv("OMPI_COMM_WORLD_SIZE");
   EXPECT_EQ(sweep.exit_code, 2);
   EXPECT_NE(sweep.output.find("`jellysim sweep` was started as 3 MPI ranks"), std::string::npos) << sweep.output;

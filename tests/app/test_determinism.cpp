@@ -55,10 +55,12 @@ constexpr bool kOptimisedBuild = false;  // the sanitizer build (-O1) may round 
 #endif
 
 // The main job exactly as scripts/output-hashes.sh runs it (3D outputs off; the rendering does not
-// write metrics.csv). The jellyfish simulation has no thread setting; its hash is fixed.
+// write metrics.csv; the preview grid, 96 × 192, so that the sanitizer pass can afford it). The
+// jellyfish simulation has no thread setting; its hash is fixed.
 TEST(Determinism, MainJobMetricsHaveTheRecordedHash) {
   const std::string h = hash_of(
-      "run --set render.png_frames=false --set render.video=false --set render.glb=false --set render.viewer=false",
+      std::string("run --set render.png_frames=false --set render.video=false --set render.glb=false "
+                  "--set render.viewer=false") + testing::kPreviewGrid,
       "metrics.csv", "determinism_run");
   ASSERT_EQ(h.size(), 64u);
   if (kOptimisedBuild) {

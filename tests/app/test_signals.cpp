@@ -29,7 +29,7 @@ bool wait_for(const fs::path& file) {
 
 void expect_interrupted_run(int signal_number, int expected_exit) {
   const fs::path dir = jellysim::testing::fresh_scratch_dir("signal_" + std::to_string(signal_number));
-  const pid_t pid = spawn_jellysim({"simulate", "--quiet", "--out", dir.string()});
+  const pid_t pid = spawn_jellysim({"simulate", "--quiet", "--set", "tank.cells=[96,192]", "--out", dir.string()});
   ASSERT_GT(pid, 0);
   if (!wait_for(dir / "frames" / "body_000002.vtp")) {  // the third frame: inside the step loop
     ::kill(pid, SIGKILL);

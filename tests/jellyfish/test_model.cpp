@@ -81,8 +81,19 @@ TEST(Jellyfish, GeometryFollowsTheBellShapeAndPeskinsSpacing) {
   EXPECT_FALSE(polyline_self_intersects(u));
 }
 
-TEST(Jellyfish, SpringConstantsComeFromEquationSevenOne) {
+TEST(Jellyfish, ContinuumSpringConstantsAreTheMaterialsShare) {
   const JellyfishSpec spec = small_spec();
+  const Jellyfish j(spec);
+  const auto& lin = j.body().linear;
+  const auto& ang = j.body().angular;
+  EXPECT_NEAR(lin.stiffness[0], spec.material.stretching_n_per_m / lin.rest_length[0], 1e-12);  // S / l
+  const double l1 = lin.rest_length[0], l2 = lin.rest_length[1];
+  EXPECT_NEAR(ang.stiffness[0], spec.material.bending_n_m / (0.5 * (l1 + l2)), 1e-15);  // B / l̄
+}
+
+TEST(Jellyfish, SpringConstantsComeFromEquationSevenOne) {
+  JellyfishSpec spec = small_spec();
+  spec.elastic_model = ElasticModel::thesis;
   const Jellyfish j(spec);
   const auto& lin = j.body().linear;
   // First umbrella spring: tangential, A = ϑ².
@@ -113,9 +124,18 @@ TEST(Jellyfish, MusclesShortenToGammaAtFullContraction) {
   }
 }
 
+TEST(Jellyfish, DenseMeshModelNeedsTheThesisElasticModel) {
+  JellyfishSpec spec = small_spec();
+  spec.model = UmbrellaModel::mesh;
+  EXPECT_THROW(validate(spec), std::invalid_argument);
+  spec.elastic_model = ElasticModel::thesis;
+  EXPECT_NO_THROW(validate(spec));
+}
+
 TEST(Jellyfish, DenseMeshModelHasTwoRowsWithCrossingDiagonals) {
   JellyfishSpec spec = small_spec();
   spec.model = UmbrellaModel::mesh;
+  spec.elastic_model = ElasticModel::thesis;  // the lattice is the thesis's construction
   spec.tentacle_length_m = 0.0;
   const Jellyfish j(spec);
   const std::size_t n = j.layout().umbrella.size();

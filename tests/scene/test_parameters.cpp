@@ -129,7 +129,7 @@ TEST(SceneParameters, ArraysNeedTheirLengthAndChoicesTheirValues) {
 TEST(SceneParameters, TheSceneFileCommentsGiveUnitAndRange) {
   const std::string toml = scene::jellyfish_scene().scene_toml();
   EXPECT_NE(toml.find("frequency = 0.7                # Hz, (0, 5]: contractions per second"), std::string::npos) << toml;
-  EXPECT_NE(toml.find("solver = \"eulerian\"            # eulerian | semi-lagrangian:"), std::string::npos);
+  EXPECT_NE(toml.find("solver = \"semi-lagrangian\"     # eulerian | semi-lagrangian:"), std::string::npos);
 }
 
 // The physics structs' defaults are the built-in scene (they disagreed once: TankSpec defaulted to
@@ -169,6 +169,14 @@ TEST(SceneParameters, SpecDefaultsAreTheBuiltInScene) {
   EXPECT_DOUBLE_EQ(j.max_spacing_m, k.max_spacing_m);
   EXPECT_EQ(j.min_segments_per_side, k.min_segments_per_side);
   EXPECT_EQ(j.model, k.model);
+  EXPECT_EQ(j.elastic_model, k.elastic_model);
+  EXPECT_EQ(j.material.stretching_n_per_m, k.material.stretching_n_per_m);
+  EXPECT_EQ(j.material.bending_n_m, k.material.bending_n_m);
+  EXPECT_EQ(j.material.muscle_n_per_m2, k.material.muscle_n_per_m2);
+  EXPECT_EQ(j.material.tentacle_stretching_n_per_m, k.material.tentacle_stretching_n_per_m);
+  EXPECT_EQ(j.material.tentacle_bending_n_m, k.material.tentacle_bending_n_m);
+  EXPECT_EQ(j.material.line_density_kg_per_m2, k.material.line_density_kg_per_m2);
+  EXPECT_EQ(j.material.tentacle_line_density_kg_per_m2, k.material.tentacle_line_density_kg_per_m2);
   EXPECT_EQ(j.bell_modulus_pa, k.bell_modulus_pa);
   EXPECT_EQ(j.muscle_modulus_pa, k.muscle_modulus_pa);
   EXPECT_EQ(j.bending_factor, k.bending_factor);

@@ -28,12 +28,12 @@ enum class MirrorSymmetry {
 /// SceneParameters.SpecDefaultsAreTheBuiltInScene).
 struct TankSpec {
   double width_m = 0.24;
-  double height_m = 0.32;
-  int cells_x = 96;
-  int cells_y = 128;
-  std::string solver = "eulerian";
+  double height_m = 0.48;
+  int cells_x = 384;
+  int cells_y = 768;
+  std::string solver = "semi-lagrangian";
   fluid::ConvectionScheme convection = fluid::ConvectionScheme::donor_cell;  ///< of the Eulerian solver
-  fluid::AdvectionScheme advection = fluid::AdvectionScheme::linear;        ///< of the semi-Lagrangian one
+  fluid::AdvectionScheme advection = fluid::AdvectionScheme::maccormack;    ///< of the semi-Lagrangian one
   std::string pressure_solver = "fft";
   double pressure_tolerance = 1e-8;  ///< relative max-norm residual of every pressure solve
   double viscosity_m2_per_s = 1.304e-5;

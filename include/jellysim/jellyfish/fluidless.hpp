@@ -7,10 +7,15 @@
 #include "jellysim/jellyfish/jellyfish.hpp"
 #include "jellysim/ode/ode_system.hpp"
 
+#include <Eigen/Sparse>
+
 namespace jellysim::jellyfish {
 
 struct FluidlessSettings {
-  double drag_kg_per_s = 0.05;        ///< κ_d of eq. 2.17 on every marker (per metre of depth)
+  double drag_kg_per_s = 0.05;        ///< κ_d of eq. 2.17 on every marker (the thesis model; per metre of depth)
+  /// The continuum model's drag per metre of bell or tentacle: a point standing for an arc s gets
+  /// κ_d = this · s (40.8 is 0.05 kg/s per marker at the built-in spacing).
+  double drag_kg_per_s_m2 = 40.8;
   double pressure_factor = 200.0;     ///< α of eq. 8.1, Pa·s/m²
 };
 
@@ -20,16 +25,22 @@ class FluidlessSystem final : public ode::OdeSystem {
   FluidlessSystem(Jellyfish& jellyfish, const FluidlessSettings& settings);
   Eigen::Index dimension() const override;
   Eigen::Index position_size() const override;
+  bool has_jacobian() const override { return true; }
   ode::Vector pack_state() const;
   /// Writes positions and velocities of y into the jellyfish's body.
   void unpack_state(const ode::Vector& y) const;
 
  protected:
   void compute_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const override;
+  /// The springs' and the drag's part of df/dy (for implicit integrators such as backward Euler).
+  /// The cavity pressure's dependence on the velocities is left out: Newton's iteration then
+  /// converges on it at a linear rate, its share of the force being small.
+  void compute_jacobian(double t, const ode::Vector& y, ode::SparseMatrix& jac) const override;
 
  private:
   Jellyfish& jellyfish_;
   FluidlessSettings settings_;
+  std::vector<double> point_drag_;  ///< continuum model: κ_d of each point (empty: the body's one κ_d)
   mutable std::vector<Vec2> x_, v_, f_;
 };
 

@@ -21,11 +21,17 @@ struct HooverMillerSpec {
   double domain_width_m = 3.0, domain_height_m = 10.0;
   double spring_stiffness = 1e7;        ///< κ_s: bell springs get κ_s/ds (IB2d units)
   double beam_stiffness = 2.5e5;        ///< κ_b: non-invariant beams get κ_b/ds³
-  double muscle_stiffness = 1e5;        ///< muscle springs (not scaled by ds)
+  double muscle_stiffness = 1e5;        ///< muscle springs (IB2d: not scaled by ds)
+  /// The consistent variant ("hoover-miller-consistent", docs/ib2d.md): each muscle spring stands for
+  /// ds of bell, so its stiffness is muscle_stiffness · ds / ds₂₅₆ (IB2d's value at N = 256) and the
+  /// muscles' total pull no longer grows with the resolution. IB2d's own files keep it fixed.
+  bool muscles_per_length = false;
   double target_stiffness = 2.5e6;      ///< flow-blocker targets (not scaled by ds)
 
   double mesh_width_m() const { return 8.0 / resolution; }
   double marker_spacing_m() const { return 0.5 * mesh_width_m(); }  ///< ds
+  /// The stiffness each muscle spring gets (see muscles_per_length).
+  double muscle_spring_stiffness() const { return muscles_per_length ? muscle_stiffness * 256.0 / resolution : muscle_stiffness; }
   int cells_x() const;  ///< 0.375 N
   int cells_y() const;  ///< 1.25 N
 };

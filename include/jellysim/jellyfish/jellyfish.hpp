@@ -23,6 +23,31 @@ namespace jellysim::jellyfish {
 
 enum class UmbrellaModel { angular, mesh };
 
+/// How the slice's springs get their constants (docs/jellyfish.md, "Elastic models"):
+///  * continuum (the default): from material quantities that do not mention the marker spacing
+///    (ContinuumMaterial), discretised so that a spacing of ds, ds/2 or ds/4 describes the same
+///    body: spring constants S / l, joints B / l̄, muscles k_m · (band of bell height) / L, point
+///    masses ρ · (arc length);
+///  * thesis: per spring as §7.1 builds it (κ_l = λA/l_r with A = ϑ², κ_θ = f κ_l l_r², muscles of
+///    cross-section gap², one point mass per marker), which changes the body when the spacing
+///    changes (the bending stiffness falls as ds², the muscles' total pull as ds). The chapter 8
+///    studies use it on the thesis's tank.
+enum class ElasticModel { continuum, thesis };
+
+/// The slice's material per metre of slice depth for the continuum model. The defaults are the
+/// thesis construction of the built-in bell (λ = 1.186e6 Pa, ϑ = 1.5 mm, bending factor 10,
+/// muscles 4e5 Pa, tentacles 3 ϑ², one bending factor) evaluated at the built-in marker spacing
+/// 1.2246 mm (96 × 128 cells), so the built-in bell is today's bell there (docs/jellyfish.md).
+struct ContinuumMaterial {
+  double stretching_n_per_m = 2.6685;       ///< S: bell tension per unit strain (a plate: E·h)
+  double bending_n_m = 4.0e-5;              ///< B: bell bending moment per unit curvature (a plate: E·h³/12)
+  double muscle_n_per_m2 = 427.0;           ///< k_m: muscle tension per unit strain, per metre of bell height
+  double tentacle_stretching_n_per_m = 8.0055;   ///< S of a tentacle
+  double tentacle_bending_n_m = 1.09e-5;         ///< B of a tentacle
+  double line_density_kg_per_m2 = 0.8166;        ///< bell mass per metre of arc (fluid-free model only)
+  double tentacle_line_density_kg_per_m2 = 2.571;  ///< tentacle mass per metre (fluid-free model only)
+};
+
 struct JellyfishSpec {
   // Shape (Fig. 8.21).
   Vec2 aperture_centre_m{0.12, 0.08};   ///< centre of the aperture (bell opening)
@@ -31,17 +56,19 @@ struct JellyfishSpec {
   double height_m = 0.028;
   double tentacle_length_m = 0.014;
   double thickness_m = 0.0015;        ///< umbrella thickness ϑ
-  double max_spacing_m = 0.00125;     ///< marker spacing bound (Peskin: ≤ Δx/2 of the built-in tank)
+  double max_spacing_m = 0.0003125;   ///< marker spacing bound (Peskin: ≤ Δx/2 of the built-in tank)
   int min_segments_per_side = 6;
   UmbrellaModel model = UmbrellaModel::angular;
+  ElasticModel elastic_model = ElasticModel::continuum;
+  ContinuumMaterial material{};           ///< the continuum model's material
 
-  // Material (eq. 7.1, κ_l = λ A / l_r; forces per metre of depth).
+  // The thesis model's material (eq. 7.1, κ_l = λ A / l_r; forces per metre of depth).
   double bell_modulus_pa = 1.186e6;       ///< bell mesoglea λ
   double muscle_modulus_pa = 4.0e5;       ///< circumferential muscle λ
   double bending_factor = 10.0;           ///< κ_θ = factor · κ_l l_r² for the umbrella's angular springs
   double tentacle_volume_fraction = 3.0;  ///< tentacle springs' volume relative to the umbrella's (thesis: 0.01)
   double tentacle_bending_factor = 1.0;   ///< κ_θ = factor · κ_l · l_r² for the tentacles' angular springs
-  double point_mass_kg = 1e-3;            ///< per marker (used only by the fluid-free model)
+  double point_mass_kg = 1e-3;            ///< per marker (thesis model; used only by the fluid-free model)
 
   // Contraction (§7.1).
   double frequency_hz = 0.7;
@@ -146,6 +173,14 @@ class Jellyfish {
   elastic::Body* body_ = &own_body_;
   std::size_t first_point_ = 0, point_count_ = 0;
   std::size_t first_linear_ = 0, first_angular_ = 0;
+  // Construction (§7.1), in this order: umbrella, muscles, tentacles, then rings in axisymmetric water.
+  void build_umbrella(const std::vector<Vec2>& profile, double spacing);
+  void build_muscles(const std::vector<Vec2>& profile, double spacing);
+  void build_tentacles(int tentacle_points);
+  void make_ring_jellyfish(double spacing);
+  /// Adds a spring between two points of the own body, its rest length their distance now.
+  int add_spring(int a, int b, double stiffness_n_per_m);
+  double distance(int a, int b) const;
   /// Steering (beyond the thesis): chooses the bias once per cycle and bends the active side.
   void steer(double t);
 

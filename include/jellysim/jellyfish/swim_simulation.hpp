@@ -31,7 +31,7 @@ struct SwimSettings {
   double obstacle_max_displacement_m = 0.0;  ///< tether stretch that stops the run; 0: one cell
   coupling::CouplingSettings coupling;
   coupling::StabilityLimits limits;
-  double duration_s = 10.0 / 0.7;  ///< ten contraction cycles at 0.7 Hz
+  double duration_s = 5.0 / 0.7;  ///< five contraction cycles at 0.7 Hz
   double frame_interval_s = 1.0 / 30.0;
 
   /// The first jellyfish (the one metrics.csv describes); throws when there is none.
