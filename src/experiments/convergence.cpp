@@ -4,7 +4,6 @@
 // Works for a jellyfish (planar or axisymmetric water) and for a generated IB2d structure.
 #include <algorithm>
 #include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -130,8 +129,9 @@ struct Row {
 };
 
 /// The swimmer's position along its axis (a structure: its centroid's y) at each recorded frame,
-/// and its markers.
-std::vector<double> positions(const Study& study, const SwimRecording& rec, double& markers) {
+/// and its markers (a structure's: its vertices but the targets).
+std::vector<double> positions(const Study& study, const jellyfish::SwimSettings& s, const SwimRecording& rec,
+                              double& markers) {
   std::vector<double> p;
   if (study.swimmer == Swimmer::jellyfish) {
     for (const auto& m : rec.metrics) p.push_back(m.position);
@@ -140,6 +140,8 @@ std::vector<double> positions(const Study& study, const SwimRecording& rec, doub
     for (const auto& strand : f.tentacles) markers += static_cast<double>(strand.size()) - 1.0;  // roots are umbrella points
     return p;
   }
+  const elastic::Ib2dStructure& st = s.structures.front().structure;
+  markers = static_cast<double>(st.vertices.size() - st.targets.size());
   for (const auto& c : rec.structure_centroids) p.push_back(c.front().y - rec.structure_centroids.front().front().y);
   return p;
 }
@@ -153,7 +155,7 @@ Row run_grid(const Study& study, std::size_t k, const sim::ProgressCallback& pro
   failure = rec.stats.failure;
   row.steps = static_cast<double>(rec.stats.steps);
   row.wall_seconds = rec.stats.wall_seconds;
-  const std::vector<double> p = positions(study, rec, row.markers);
+  const std::vector<double> p = positions(study, s, rec, row.markers);
   for (int c = 1; c <= study.cycles; ++c) {
     const auto end = static_cast<std::size_t>(c * study.frames_per_cycle);
     if (end >= p.size()) break;

@@ -213,6 +213,8 @@ class SpringConstants {
   double tentacle_mass(double arc) const {
     return continuum() ? s_.material.tentacle_line_density_kg_per_m2 * arc : s_.point_mass_kg * s_.tentacle_volume_fraction;
   }
+  /// What a tentacle's first half segment adds to the bell tip it hangs from (thesis: nothing).
+  double tentacle_root_mass(double arc) const { return continuum() ? tentacle_mass(arc) : 0.0; }
   /// C = κ_l l_r of the bell's springs, the ring jellyfish's hoop membrane stiffness.
   double membrane() const { return continuum() ? s_.material.stretching_n_per_m : s_.bell_modulus_pa * bell_area(); }
 
@@ -360,7 +362,7 @@ void Jellyfish::build_tentacles(int tentacle_points) {
     for (int j = 1; j <= tentacle_points; ++j)
       strand.push_back(own_body_.add_point(root + (j * t_spacing) * down,
                                            k.tentacle_mass(j < tentacle_points ? t_spacing : 0.5 * t_spacing)));
-    own_body_.points.mass[static_cast<std::size_t>(tip)] += spec_.elastic_model == ElasticModel::continuum ? k.tentacle_mass(0.5 * t_spacing) : 0.0;
+    own_body_.points.mass[static_cast<std::size_t>(tip)] += k.tentacle_root_mass(0.5 * t_spacing);
     for (std::size_t j = 0; j + 1 < strand.size(); ++j)
       add_spring(strand[j], strand[j + 1], k.tentacle_spring(distance(strand[j], strand[j + 1])));
     auto joint = [&](int a, int b, int c, double kappa) {

@@ -92,7 +92,8 @@ void validate(const ObstacleSpec& s) {
       break;
     }
   }
-  require(s.tether_stiffness_n_per_m > 0, s, "stiffness", "(0, inf) N/m");
+  require(s.tether_stiffness_n_per_m2 > 0, s, "tether_stiffness", "(0, inf) N/m²");
+  require(s.tether_stiffness_n_per_m >= 0, s, "stiffness", "(0, inf) N/m");
   require(s.motion.frequency_hz >= 0, s, "frequency", "[0, inf) Hz");
 }
 
@@ -151,14 +152,21 @@ ObstacleParts add_obstacle(const ObstacleSpec& spec, double max_spacing_m, elast
   parts.shift = std::make_shared<Vec2>();
   std::shared_ptr<const Vec2> shift = parts.shift;
   constexpr double kMarkerMass = 1e-6;  // unused by the coupling: the markers are massless
-  for (Vec2 start : obstacle_markers(spec, max_spacing_m)) {
+  const std::vector<Vec2> starts = obstacle_markers(spec, max_spacing_m);
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    const Vec2 start = starts[k];
+    // The outline each marker stands for: half of each neighbouring gap on the closed outline.
+    const double share = 0.5 * (norm(starts[(k + 1) % starts.size()] - start) +
+                                norm(start - starts[(k + starts.size() - 1) % starts.size()]));
+    const double tether = spec.tether_stiffness_n_per_m > 0 ? spec.tether_stiffness_n_per_m
+                                                            : spec.tether_stiffness_n_per_m2 * share;
     const int marker = body.add_point(start, kMarkerMass);
     // Every target is prescribed (a fixed obstacle has a path that stays put), so that dragging
     // can move it through `shift`.
     const int target = body.add_prescribed_point([start, motion, shift](double t) {
       return elastic::PrescribedState{start + *shift + motion.offset(t), motion.velocity(t), {}};
     });
-    body.add_linear_spring(marker, target, spec.tether_stiffness_n_per_m, 0.0);
+    body.add_linear_spring(marker, target, tether, 0.0);
     parts.markers.push_back(marker);
     parts.targets.push_back(target);
     parts.tethers.push_back(static_cast<int>(body.linear.size()) - 1);

@@ -62,7 +62,8 @@ const char* const kPreamble =
     "#                       position, tilt_deg, diameter, frequency, phase, noise_seed, steering.\n"
     "#   type = \"circle\" (centre, radius), \"box\" (centre, size, angle_deg) or \"polygon\" (points =\n"
     "#   [x0, y0, x1, y1, ...] or file = \"outline.txt\"): a rigid obstacle held by stiff tethers\n"
-    "#   (stiffness, N/m per marker), optionally moving: velocity = [vx, vy], amplitude = [ax, ay],\n"
+    "#   (tether_stiffness, N/m² per metre of outline, default 40000; or stiffness, N/m per marker),\n"
+    "#   optionally moving: velocity = [vx, vy], amplitude = [ax, ay],\n"
     "#   frequency (p(t) = p0 + v t + a sin 2πft).\n"
     "#   type = \"ib2d\" (files = \"path/stem\" or model = \"hoover-miller\", [[objects.schedules]]): a structure\n"
     "#   in IB2d's terms, its springs' rest lengths or stiffnesses on a schedule (docs/ib2d.md).\n";
@@ -361,7 +362,7 @@ void require_known_fields(const io::Config& o, const std::vector<std::string>& a
 jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where) {
   jellyfish::ObstacleSpec spec;
   spec.name = where;
-  std::vector<std::string> allowed{"type", "stiffness", "velocity", "amplitude", "frequency"};
+  std::vector<std::string> allowed{"type", "tether_stiffness", "stiffness", "velocity", "amplitude", "frequency"};
   if (type == "circle") {
     spec.shape = jellyfish::ObstacleShape::circle;
     allowed.insert(allowed.end(), {"centre", "radius"});
@@ -397,7 +398,11 @@ jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& ty
       for (std::size_t k = 0; k + 1 < xy.size(); k += 2) spec.vertices_m.push_back({xy[k], xy[k + 1]});
     }
   }
+  if (o.has("stiffness") && o.has("tether_stiffness"))
+    throw InputError(where + ": give either 'tether_stiffness' (N/m² per metre of outline) or 'stiffness' (N/m per "
+                             "marker), not both");
   if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", kStiffness);
+  if (o.has("tether_stiffness")) spec.tether_stiffness_n_per_m2 = o.number("tether_stiffness", kStiffness);
   if (o.has("velocity")) spec.motion.velocity_m_per_s = o.vec2("velocity");
   if (o.has("amplitude")) spec.motion.amplitude_m = o.vec2("amplitude");
   if (o.has("frequency")) spec.motion.frequency_hz = o.number("frequency", io::Range::non_negative());

@@ -8,6 +8,7 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/jellyfish/obstacle.hpp"
 #include "jellyfish_test_util.hpp"
 
 namespace jellysim::experiments {
@@ -243,6 +244,28 @@ void expect_rejected(const std::string& overlay, const std::string& words) {
   }
 }
 
+// An obstacle's tethers are a stiffness per metre of outline (issue 33): at marker spacings ds and
+// ds/2 the tethers of a circle add up to the same 2π r k (so it gives the same under a load), each
+// marker's the outline it stands for; `stiffness` keeps IB2d's per-marker constant.
+TEST(Tank, ObstacleTethersAreAStiffnessPerUnitLengthOfOutline) {
+  jellyfish::ObstacleSpec circle;
+  circle.centre_m = {0.1, 0.1};
+  circle.radius_m = 0.02;
+  double total[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    elastic::Body body;
+    const jellyfish::ObstacleParts parts = jellyfish::add_obstacle(circle, k == 0 ? 0.00125 : 0.000625, body);
+    for (int t : parts.tethers) total[k] += body.linear.stiffness[static_cast<std::size_t>(t)];
+  }
+  const double expected = circle.tether_stiffness_n_per_m2 * 2.0 * std::numbers::pi * circle.radius_m;
+  EXPECT_NEAR(total[0] / expected, 1.0, 2e-4);  // the chords' length against the circle's: (1 − (π/n)²/6)
+  EXPECT_NEAR(total[1] / expected, 1.0, 1e-4);
+  circle.tether_stiffness_n_per_m = 50.0;
+  elastic::Body body;
+  const jellyfish::ObstacleParts parts = jellyfish::add_obstacle(circle, 0.00125, body);
+  EXPECT_EQ(body.linear.stiffness[static_cast<std::size_t>(parts.tethers.front())], 50.0);
+}
+
 TEST(Tank, BadScenesAreRejectedWithAClearMessage) {
   // Overlapping bodies.
   expect_rejected(R"(
@@ -271,6 +294,16 @@ size = [0.1, 0.1]
 position = [0.4, 0.79]
 )",
                   "jellyfish 1 reaches outside the tank");
+  // Two tether stiffnesses.
+  expect_rejected(R"(
+[[objects]]
+type = "circle"
+centre = [0.2, 0.6]
+radius = 0.01
+stiffness = 50.0
+tether_stiffness = 40000.0
+)",
+                  "objects[0] (circle): give either 'tether_stiffness'");
   // Unknown object types and fields.
   expect_rejected(R"(
 [[objects]]

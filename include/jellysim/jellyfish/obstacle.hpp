@@ -34,7 +34,12 @@ struct ObstacleSpec {
   Vec2 size_m{};               ///< box width and height
   double angle_rad = 0.0;      ///< box rotation, counter-clockwise
   std::vector<Vec2> vertices_m;///< polygon, either orientation, not self-intersecting
-  double tether_stiffness_n_per_m = 50.0;  ///< per marker and metre of depth
+  /// The tethers' stiffness per metre of outline and of depth (N/m²): each marker's tether gets the
+  /// share of the outline it stands for, so the obstacle gives the same under a load at any marker
+  /// spacing (40,000 N/m² is 50 N/m per marker 1.25 mm apart).
+  double tether_stiffness_n_per_m2 = 40000.0;
+  /// Per marker and metre of depth instead (the scene field `stiffness`, IB2d's way); 0: unset.
+  double tether_stiffness_n_per_m = 0.0;
   ObstacleMotion motion;
 };
 
