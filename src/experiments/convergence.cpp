@@ -134,6 +134,7 @@ std::vector<double> positions(const Study& study, const jellyfish::SwimSettings&
                               double& markers) {
   std::vector<double> p;
   if (study.swimmer == Swimmer::jellyfish) {
+    if (rec.frames.empty()) return p;  // a run that failed before its first frame
     for (const auto& m : rec.metrics) p.push_back(m.position);
     const jellyfish::SliceFrame& f = rec.frames.front();
     markers = static_cast<double>(f.umbrella.size());
