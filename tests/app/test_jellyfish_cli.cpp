@@ -121,6 +121,12 @@ TEST(JellyfishCli, ConvergenceStudyRefusesGridsItCannotRefine) {
   EXPECT_EQ(files.exit_code, 2) << files.output;
   EXPECT_NE(files.output.find("from files"), std::string::npos) << files.output;
   EXPECT_FALSE(fs::exists(dir));
+  // A scene file goes with the experiments on the jellyfish scene only.
+  const Result other = run_cli("experiment swinging-bar " + std::string(JELLYSIM_SOURCE_DIR) +
+                               "/scenes/two-jellyfish.toml --quiet --out " + dir.string());
+  EXPECT_EQ(other.exit_code, 2) << other.output;
+  EXPECT_NE(other.output.find("takes no scene file"), std::string::npos) << other.output;
+  EXPECT_FALSE(fs::exists(dir));
 }
 
 TEST(JellyfishCli, AMaterialFieldOfTheOtherElasticModelIsRefused) {
