@@ -37,7 +37,7 @@ enum class ElasticModel { continuum, thesis };
 /// The slice's material per metre of slice depth for the continuum model. The defaults are the
 /// thesis construction of the built-in bell (λ = 1.186e6 Pa, ϑ = 1.5 mm, bending factor 10,
 /// muscles 4e5 Pa, tentacles 3 ϑ², one bending factor) evaluated at the built-in marker spacing
-/// 1.2246 mm (96 × 128 cells), so the built-in bell is today's bell there (docs/jellyfish.md).
+/// 1.2246 mm (96 × 128 cells), so that at that spacing it is the thesis's bell (docs/jellyfish.md).
 struct ContinuumMaterial {
   double stretching_n_per_m = 2.6685;       ///< S: bell tension per unit strain (a plate: E·h)
   double bending_n_m = 4.0e-5;              ///< B: bell bending moment per unit curvature (a plate: E·h³/12)
