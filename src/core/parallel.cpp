@@ -163,4 +163,64 @@ void WorkerPool::helper_loop(int part) {
   }
 }
 
+SerialWorker::SerialWorker(std::size_t capacity) : capacity_(std::max<std::size_t>(capacity, 1)), thread_([this] { loop(); }) {}
+
+SerialWorker::~SerialWorker() {
+  {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return jobs_.empty() && !busy_; });
+    stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void SerialWorker::rethrow_failure() {
+  if (!failure_) return;
+  std::exception_ptr failure = failure_;
+  failure_ = nullptr;
+  std::rethrow_exception(failure);
+}
+
+void SerialWorker::submit(std::function<void()> job) {
+  {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return jobs_.size() < capacity_ || failure_; });
+    rethrow_failure();
+    jobs_.push_back(std::move(job));
+  }
+  changed_.notify_all();
+}
+
+void SerialWorker::drain() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [this] { return (jobs_.empty() && !busy_) || failure_; });
+  rethrow_failure();
+}
+
+void SerialWorker::loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+    if (jobs_.empty()) return;  // stopping, nothing left
+    std::function<void()> job = std::move(jobs_.front());
+    jobs_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      job();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    busy_ = false;
+    if (error && !failure_) {
+      failure_ = error;
+      jobs_.clear();  // the rest would write after a missing file
+    }
+    changed_.notify_all();
+  }
+}
+
 }  // namespace jellysim

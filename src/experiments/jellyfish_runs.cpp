@@ -3,10 +3,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <numbers>
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/plot.hpp"
 
@@ -63,28 +66,31 @@ io::VtkPolyData body_data(const jellyfish::SwimSimulation& sim) {
   return d;
 }
 
-/// Writes the per-frame files and keeps the .pvd entries.
+/// What one frame's files need, captured from the simulation (on its thread) so that the writer
+/// thread can write them while the simulation computes the next frame.
+struct FrameSnapshot {
+  std::size_t index = 0;
+  double time_s = 0.0;
+  std::optional<fluid::FlowState> flow;          ///< the field (VTK) and the picture's background
+  io::VtkPolyData tracers, body;                 ///< VTK only
+  std::optional<render::FieldPicture> picture;   ///< its state is `flow`, set by the writer
+};
+
+/// Writes the per-frame files and keeps the .pvd entries, on a writer thread (issue 34: outputs
+/// off the simulation's critical path). The files and their order are those of writing them in
+/// the loop; an error is reported by the next frame's write() or by flush().
 class FrameFiles {
  public:
   FrameFiles(const io::OutputDir& out, const SwimOutputOptions& o) : out_(out), frames_(out.subdirectory("frames")), options_(o) {}
 
   void write(const jellyfish::SwimSimulation& sim, std::size_t index) {
-    const std::string id = frame_id(index);
-    if (options_.vtk) {
-      write_via_temporary(frames_, field_file(id), [&](const auto& p) { io::write_flow_vti(p, sim.flow()); });
-      write_via_temporary(frames_, tracers_file(id), [&](const auto& p) { io::write_polydata_vtp(p, tracer_data(sim)); });
-      write_via_temporary(frames_, body_file(id), [&](const auto& p) { io::write_polydata_vtp(p, body_data(sim)); });
-      add_pvd_entries(sim.time_s(), id);
-      write_via_temporary(out_, "jellyfish.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
-    }
-    if (options_.pictures && index % static_cast<std::size_t>(options_.picture_every) == 0) {
-      render::FieldPictureOptions po;
-      po.quantity = options_.quantity;
-      po.arrows = options_.quantity == render::FieldQuantity::speed;
-      const render::FieldPicture picture = swim_picture(sim, options_.zoom_diameters);
-      write_via_temporary(frames_, "slice_" + id + ".png", [&](const auto& p) { render::write_field_png(picture, po, p); });
-    }
+    auto snapshot = std::make_shared<FrameSnapshot>(capture(sim, index));
+    writer_.submit([this, snapshot] { write_snapshot(*snapshot); });
   }
+
+  /// Waits until every frame so far is on disk (before a checkpoint, and at the end of the run);
+  /// rethrows a write's error.
+  void flush() { writer_.drain(); }
 
   /// A run resumed from a checkpoint: the frames written before it are in the .pvd collection.
   void continue_after(const std::vector<double>& frame_times) {
@@ -93,6 +99,46 @@ class FrameFiles {
   }
 
  private:
+  bool draws_picture(std::size_t index) const {
+    return options_.pictures && index % static_cast<std::size_t>(options_.picture_every) == 0;
+  }
+
+  /// On the simulation's thread: copies of what the files show.
+  FrameSnapshot capture(const jellyfish::SwimSimulation& sim, std::size_t index) const {
+    FrameSnapshot s;
+    s.index = index;
+    s.time_s = sim.time_s();
+    if (options_.vtk || draws_picture(index)) s.flow = sim.flow();
+    if (options_.vtk) {
+      s.tracers = tracer_data(sim);
+      s.body = body_data(sim);
+    }
+    if (draws_picture(index)) {
+      s.picture = swim_picture(sim, options_.zoom_diameters);
+      s.picture->state = nullptr;  // the snapshot's copy, once it has its place
+    }
+    return s;
+  }
+
+  /// On the writer's thread.
+  void write_snapshot(FrameSnapshot& s) {
+    const std::string id = frame_id(s.index);
+    if (options_.vtk) {
+      write_via_temporary(frames_, field_file(id), [&](const auto& p) { io::write_flow_vti(p, *s.flow); });
+      write_via_temporary(frames_, tracers_file(id), [&](const auto& p) { io::write_polydata_vtp(p, s.tracers); });
+      write_via_temporary(frames_, body_file(id), [&](const auto& p) { io::write_polydata_vtp(p, s.body); });
+      add_pvd_entries(s.time_s, id);
+      write_via_temporary(out_, "jellyfish.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
+    }
+    if (s.picture) {
+      render::FieldPictureOptions po;
+      po.quantity = options_.quantity;
+      po.arrows = options_.quantity == render::FieldQuantity::speed;
+      s.picture->state = &*s.flow;
+      write_via_temporary(frames_, "slice_" + id + ".png", [&](const auto& p) { render::write_field_png(*s.picture, po, p); });
+    }
+  }
+
   static std::string field_file(const std::string& id) { return "field_" + id + ".vti"; }
   static std::string tracers_file(const std::string& id) { return "tracers_" + id + ".vtp"; }
   static std::string body_file(const std::string& id) { return "body_" + id + ".vtp"; }
@@ -105,7 +151,8 @@ class FrameFiles {
   const io::OutputDir& out_;
   io::OutputDir frames_;
   SwimOutputOptions options_;
-  std::vector<io::PvdEntry> entries_;
+  std::vector<io::PvdEntry> entries_;  ///< the writer's (and continue_after's, before any frame)
+  SerialWorker writer_{2};             ///< last: drained before the members its jobs use go
 };
 
 /// Recorded slice frames in a checkpoint (both directions).
@@ -237,6 +284,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   double next_checkpoint = every > 0 ? next_checkpoint_time(sim.time_s(), every) : INFINITY;
   // A checkpoint at a frame: the simulation, then what has been recorded up to that frame.
   auto write_checkpoint = [&](const jellyfish::SwimSimulation& s) {
+    if (files) files->flush();  // a resumed run finds every frame before the checkpoint on disk
     core::StateArchive state = core::StateArchive::saving();
     s.save_state(state);
     archive_recording(state, rec);
@@ -269,6 +317,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         return {};
       },
       progress, static_cast<std::int64_t>(frame));
+  if (files) files->flush();  // every frame on disk (or a write's error) before the run's own files
   if (every > 0 && rec.stats.failure.empty()) out->remove(io::kCheckpointName);  // the run is whole
   const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
   if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);

@@ -9,7 +9,10 @@
 // tens of microseconds and the integrator asks for the next one a few microseconds later, but on a
 // machine busy with other work a spinning thread would only steal time from its partner.
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
+#include <deque>
+#include <mutex>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -102,6 +105,37 @@ class PathChooser {
   int period_, trials_, position_ = 0;
   bool parallel_wins_ = true;
   std::vector<double> parallel_times_, serial_times_;  ///< the current trial's jobs
+};
+
+/// One background thread that runs jobs in the order they were submitted, while the submitter goes
+/// on: e.g. a run's per-frame files written while the simulation computes the next frame (issue
+/// 34). At most `capacity` jobs wait; submit() blocks while the queue is full, so a slow writer
+/// slows the producer instead of filling memory. The first exception a job throws is rethrown by
+/// the next submit() or drain() (the jobs after it are dropped); the destructor drains without
+/// throwing, so what was submitted before an error elsewhere is still written.
+class SerialWorker {
+ public:
+  explicit SerialWorker(std::size_t capacity = 2);
+  ~SerialWorker();
+  SerialWorker(const SerialWorker&) = delete;
+  SerialWorker& operator=(const SerialWorker&) = delete;
+
+  void submit(std::function<void()> job);
+  /// Returns when every job submitted so far has run; rethrows the first exception one threw.
+  void drain();
+
+ private:
+  void loop();
+  void rethrow_failure();
+
+  std::size_t capacity_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::function<void()>> jobs_;
+  bool busy_ = false;  ///< a job is running
+  bool stop_ = false;
+  std::exception_ptr failure_;
+  std::thread thread_;  ///< last: started once the rest is ready
 };
 
 }  // namespace jellysim
