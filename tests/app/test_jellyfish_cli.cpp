@@ -107,41 +107,39 @@ TEST(JellyfishCli, ConvergenceStudyWritesItsTableChartAndGridConvergenceIndex) {
   fs::remove_all(dir);
 }
 
+namespace {
+
+/// `jellysim ARGS --out DIR` is refused: exit 2, a message naming `named`, nothing written.
+void expect_refused(const std::string& args, const std::string& named, const fs::path& dir) {
+  const Result r = run_cli(args + " --quiet --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+  EXPECT_NE(r.output.find(named), std::string::npos) << args << ": " << r.output;
+  EXPECT_FALSE(fs::exists(dir)) << args;
+}
+
+}  // namespace
+
 TEST(JellyfishCli, ConvergenceStudyRefusesGridsItCannotRefine) {
   const fs::path dir = fresh("convergence_bad");
-  for (const char* args : {"--grids 96x128,48x64", "--grids 96x128,192y256", "--grids 96x128",
-                           "--grids 48x64,96x128 --set jellyfish.spacing=0.002",
-                           "--grids 48x64,96x128 --cycles 1"}) {
-    const Result r = run_cli(std::string("experiment convergence ") + args + " --quiet --out " + dir.string());
-    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
-    EXPECT_FALSE(fs::exists(dir)) << args;
-  }
-  const Result files = run_cli("experiment convergence " + std::string(JELLYSIM_SOURCE_DIR) +
-                               "/scenes/hoover-miller-re150.toml --grids 48x160,96x320 --quiet --out " + dir.string());
-  EXPECT_EQ(files.exit_code, 2) << files.output;
-  EXPECT_NE(files.output.find("from files"), std::string::npos) << files.output;
-  EXPECT_FALSE(fs::exists(dir));
+  const std::string study = "experiment convergence ";
+  expect_refused(study + "--grids 96x128,48x64", "coarsest first", dir);
+  expect_refused(study + "--grids 96x128,192y256", "'192y256' is not NXxNY", dir);
+  expect_refused(study + "--grids 96x128", "give 2 to 8 grids", dir);
+  expect_refused(study + "--grids 48x64,96x128 --set jellyfish.spacing=0.002", "field 'jellyfish.spacing'", dir);
+  expect_refused(study + "--grids 48x64,96x128 --cycles 1", "cycles", dir);
+  expect_refused(study + JELLYSIM_SOURCE_DIR + "/scenes/hoover-miller-re150.toml --grids 48x160,96x320", "from files", dir);
   // A scene file goes with the experiments on the jellyfish scene only.
-  const Result other = run_cli("experiment swinging-bar " + std::string(JELLYSIM_SOURCE_DIR) +
-                               "/scenes/two-jellyfish.toml --quiet --out " + dir.string());
-  EXPECT_EQ(other.exit_code, 2) << other.output;
-  EXPECT_NE(other.output.find("takes no scene file"), std::string::npos) << other.output;
-  EXPECT_FALSE(fs::exists(dir));
+  expect_refused(std::string("experiment swinging-bar ") + JELLYSIM_SOURCE_DIR + "/scenes/two-jellyfish.toml",
+                 "takes no scene file", dir);
 }
 
 TEST(JellyfishCli, AMaterialFieldOfTheOtherElasticModelIsRefused) {
   // Under the continuum model the thesis's per-spring fields would be ignored, and the reverse.
   const fs::path dir = fresh("other-model");
-  const Result r = run_cli("simulate --quiet --duration 0.1 --set jellyfish.bell_modulus=11860 --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("'jellyfish.bell_modulus'"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("elastic_model"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(dir));
-  const Result t = run_cli("simulate --quiet --duration 0.1 --set jellyfish.elastic_model=thesis "
-                           "--set jellyfish.bending_rigidity=1e-4 --out " + dir.string());
-  EXPECT_EQ(t.exit_code, 2) << t.output;
-  EXPECT_NE(t.output.find("'jellyfish.bending_rigidity'"), std::string::npos) << t.output;
-  EXPECT_FALSE(fs::exists(dir));
+  expect_refused("simulate --duration 0.1 --set jellyfish.bell_modulus=11860", "'jellyfish.bell_modulus' = 11860 belongs "
+                 "to jellyfish.elastic_model = \"thesis\"", dir);
+  expect_refused("simulate --duration 0.1 --set jellyfish.elastic_model=thesis --set jellyfish.bending_rigidity=1e-4",
+                 "'jellyfish.bending_rigidity'", dir);
 }
 
 TEST(JellyfishCli, InstabilityStopsTheRunSayingWhichWhenAndWhere) {
