@@ -18,30 +18,20 @@ std::pair<double, double> cavity_area_and_rate(const std::vector<Vec2>& x, const
   return {0.5 * area, 0.5 * rate};
 }
 
-namespace {
-
-/// Adds half of each segment of a polyline of body points to both its ends' arc lengths.
-void add_arcs(const std::vector<Vec2>& x, const std::vector<int>& line, std::vector<double>& arc) {
-  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-    const auto a = static_cast<std::size_t>(line[k]), b = static_cast<std::size_t>(line[k + 1]);
-    const double half = 0.5 * norm(x[b] - x[a]);
-    arc[a] += half;
-    arc[b] += half;
-  }
-}
-
-}  // namespace
-
 FluidlessSystem::FluidlessSystem(Jellyfish& jellyfish, const FluidlessSettings& settings)
     : jellyfish_(jellyfish), settings_(settings) {
   if (jellyfish.spec().elastic_model != ElasticModel::continuum) return;
   // Drag per unit length: each point's share of the bell and tentacle lines it lies on.
   const elastic::Body& body = jellyfish.body();
-  std::vector<double> arc(body.points.size(), 0.0);
-  add_arcs(body.points.position, jellyfish.layout().umbrella, arc);
-  for (const std::vector<int>& strand : jellyfish.layout().tentacles) add_arcs(body.points.position, strand, arc);
-  point_drag_.resize(arc.size());
-  for (std::size_t p = 0; p < arc.size(); ++p) point_drag_[p] = settings.drag_kg_per_s_m2 * arc[p];
+  point_drag_.assign(body.points.size(), 0.0);
+  auto add_line = [&](const std::vector<int>& line) {  // the umbrella, then each tentacle (its root shared)
+    std::vector<Vec2> x;
+    for (int p : line) x.push_back(body.points.position[static_cast<std::size_t>(p)]);
+    const std::vector<double> arc = arc_per_point(x);
+    for (std::size_t k = 0; k < line.size(); ++k) point_drag_[static_cast<std::size_t>(line[k])] += settings.drag_kg_per_s_m2 * arc[k];
+  };
+  add_line(jellyfish.layout().umbrella);
+  for (const std::vector<int>& strand : jellyfish.layout().tentacles) add_line(strand);
 }
 
 Eigen::Index FluidlessSystem::dimension() const {

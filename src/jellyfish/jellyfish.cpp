@@ -224,7 +224,8 @@ class SpringConstants {
   const JellyfishSpec& s_;
 };
 
-/// Half of each neighbouring segment: the arc length a point of a polyline stands for.
+}  // namespace
+
 std::vector<double> arc_per_point(const std::vector<Vec2>& p) {
   std::vector<double> arc(p.size(), 0.0);
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
@@ -234,8 +235,6 @@ std::vector<double> arc_per_point(const std::vector<Vec2>& p) {
   }
   return arc;
 }
-
-}  // namespace
 
 Jellyfish::Jellyfish(const JellyfishSpec& spec) : spec_(spec) {
   validate(spec_);

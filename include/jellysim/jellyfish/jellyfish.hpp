@@ -232,6 +232,10 @@ std::vector<int> make_rings(elastic::Body& body, double axis_x, double spacing, 
                             const std::vector<std::vector<int>>& hoop_rows, const std::vector<int>& muscles,
                             double membrane_stiffness_n_per_m);
 
+/// The arc length each point of a polyline stands for: half of each neighbouring segment (the
+/// continuum model's masses, the fluid-free model's drag per unit length).
+std::vector<double> arc_per_point(const std::vector<Vec2>& polyline);
+
 /// True when two non-adjacent segments of the polyline cross (the umbrella turned inside out).
 bool polyline_self_intersects(const std::vector<Vec2>& points);
 
