@@ -6,6 +6,7 @@
 #include "batch_mpi.hpp"
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/core/interrupt.hpp"
 #include "jellysim/experiments/batch.hpp"
 #include "jellysim/io/output.hpp"
@@ -123,6 +124,7 @@ int coordinate(const Batch& batch, const std::vector<std::size_t>& todo, int ran
 
 /// The other ranks: ask for a run, run it, send its row (which asks for the next), until told to stop.
 int work(const Batch& batch, int rank) {
+  const SerialThreadsScope one_core;  // the ranks share the cores: a run's `threads = 0` is one
   MPI_Send(nullptr, 0, MPI_CHAR, 0, kReady, MPI_COMM_WORLD);
   for (;;) {
     unsigned long long k = 0;

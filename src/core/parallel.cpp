@@ -1,5 +1,7 @@
 #include "jellysim/core/parallel.hpp"
 
+#include <optional>
+
 #include "jellysim/math/median.hpp"
 
 #include <algorithm>
@@ -44,8 +46,16 @@ void PathChooser::record(double seconds) {
   serial_times_.clear();
 }
 
+namespace {
+thread_local bool t_serial_threads = false;  ///< inside a SerialThreadsScope
+}  // namespace
+
+SerialThreadsScope::SerialThreadsScope() : previous_(t_serial_threads) { t_serial_threads = true; }
+SerialThreadsScope::~SerialThreadsScope() { t_serial_threads = previous_; }
+
 int resolve_threads(int threads) {
   if (threads >= 1) return threads;
+  if (t_serial_threads) return 1;
   const unsigned cores = std::thread::hardware_concurrency();
   return static_cast<int>(std::clamp<unsigned>(cores, 1, 64));
 }
@@ -102,7 +112,10 @@ void WorkerPool::run(std::size_t n, const Body& body) {
 
 void WorkerPool::run_tasks(std::size_t n, const Task& task) {
   std::atomic<std::size_t> next{0};
+  const bool side_by_side = n > 1 && threads() > 1;
   const Phase phase = [&](int) {
+    std::optional<SerialThreadsScope> serial;
+    if (side_by_side) serial.emplace();
     for (std::size_t k = next++; k < n; k = next++) task(k);
   };
   run_phases(std::span<const Phase>(&phase, 1), n > 1);

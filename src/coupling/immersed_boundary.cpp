@@ -106,7 +106,9 @@ ImmersedBoundary::ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& bod
     throw std::invalid_argument("axisymmetric coupling: the west side is the axis, not a mirror half tank");
   body_.points.velocity.assign(body_.points.size(), Vec2{});
   refresh_markers();
+  if (const int threads = resolve_threads(settings_.threads); threads > 1) pool_ = std::make_unique<WorkerPool>(threads);
 }
+
 
 void ImmersedBoundary::refresh_markers() {
   const auto& kind = body_.points.kind;
@@ -116,6 +118,7 @@ void ImmersedBoundary::refresh_markers() {
     if (kind[p] != elastic::PointKind::Free) is_target_[p] = 1, has_targets_ = true;
   mobility_points_.clear();  // the next preconditioned step rebuilds R
   build_symmetric_unknowns();
+  split_target_unknowns();
 }
 
 void ImmersedBoundary::continue_from(const ImmersedBoundary& earlier) {
@@ -165,7 +168,21 @@ void ImmersedBoundary::set_mirror_symmetry(std::vector<int> partners) {
     throw std::invalid_argument("mirror partners: one per point needed");
   mirror_partner_ = std::move(partners);
   build_symmetric_unknowns();
+  split_target_unknowns();
   mobility_points_.clear();
+}
+
+void ImmersedBoundary::split_target_unknowns() {
+  held_.clear();
+  moving_.clear();
+  const bool symmetric = !mirror_partner_.empty();
+  const auto unknowns = symmetric ? static_cast<Eigen::Index>(picked_rows_.size())
+                                  : 2 * static_cast<Eigen::Index>(body_.points.size());
+  for (Eigen::Index u = 0; u < unknowns; ++u) {
+    const auto point = symmetric ? static_cast<std::size_t>(independent_[static_cast<std::size_t>(picked_rows_[static_cast<std::size_t>(u)] / 2)])
+                                 : static_cast<std::size_t>(u / 2);
+    (is_target_[point] ? held_ : moving_).push_back(u);
+  }
 }
 
 void ImmersedBoundary::build_symmetric_unknowns() {
@@ -526,7 +543,8 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
     mobility_points_ = x;
     ++mobility_builds_;
   } else if (rebuild) {
-    mobility_->assemble(x, is_target_, fluid_.settings().density_kg_per_m3, independent_, mobility_matrix_);
+    mobility_->assemble(x, is_target_, fluid_.settings().density_kg_per_m3, independent_, mobility_matrix_,
+                        pool_.get());
     mobility_points_ = x;
     ++mobility_builds_;
     // On the symmetric unknowns: R_s = (picked rows of R) Q, the velocity of the picked unknowns
@@ -544,7 +562,29 @@ void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMa
   }
   preconditioner_matrix_ *= -dt2;
   preconditioner_matrix_.diagonal().array() += 1.0;
-  preconditioner_lu_.compute(preconditioner_matrix_);
+  factor_preconditioner();
+}
+
+void ImmersedBoundary::factor_preconditioner() {
+  if (held_.empty()) {
+    preconditioner_lu_.compute(preconditioner_matrix_);
+    return;
+  }
+  // M = [M_mm M_mh; 0 I] (moving and held unknowns): M e = r gives e_h = r_h and
+  // M_mm e_m = r_m − M_mh r_h.
+  moving_block_ = preconditioner_matrix_(moving_, moving_);
+  coupling_block_ = preconditioner_matrix_(moving_, held_);
+  preconditioner_lu_.compute(moving_block_);
+}
+
+Eigen::VectorXd ImmersedBoundary::solve_preconditioner(const Eigen::VectorXd& v) const {
+  if (held_.empty()) return preconditioner_lu_.solve(v);
+  Eigen::VectorXd out = v;
+  const Eigen::VectorXd held = v(held_);
+  const Eigen::VectorXd moving = v(moving_) - coupling_block_ * held;
+  const Eigen::VectorXd solved = preconditioner_lu_.solve(moving);
+  out(moving_) = solved;
+  return out;
 }
 
 void ImmersedBoundary::keep_symmetric_part(Eigen::VectorXd& v) const {
@@ -561,14 +601,14 @@ void ImmersedBoundary::keep_symmetric_part(Eigen::VectorXd& v) const {
 
 void ImmersedBoundary::apply_preconditioner(const Eigen::VectorXd& in, Eigen::VectorXd& out) const {
   if (mirror_partner_.empty()) {
-    out = preconditioner_lu_.solve(in);
+    out = solve_preconditioner(in);
     return;
   }
   // in = s + a with s = ½(in + mirror(in)) symmetric: out = Q M_s⁻¹ (picked s) + a.
   Eigen::VectorXd symmetric = in;
   keep_symmetric_part(symmetric);
   const Eigen::VectorXd picked = pick_ * symmetric;
-  out = in - symmetric + symmetric_basis_ * preconditioner_lu_.solve(picked);
+  out = in - symmetric + symmetric_basis_ * solve_preconditioner(picked);
 }
 
 std::string check_stability(const fluid::FlowState& flow, const elastic::Body& body, const StabilityLimits& limits,

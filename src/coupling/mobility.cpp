@@ -1,5 +1,7 @@
 #include "jellysim/coupling/mobility.hpp"
 
+#include "jellysim/core/parallel.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -414,7 +416,7 @@ double MobilityMatrix::entry(const Transfer& to, int c_to, const Transfer& from,
 }
 
 void MobilityMatrix::assemble(std::span<const Vec2> points, std::span<const char> masked, double density_kg_per_m3,
-                              std::span<const int> rows, Eigen::MatrixXd& r) const {
+                              std::span<const int> rows, Eigen::MatrixXd& r, WorkerPool* pool) const {
   const std::size_t n = points.size();
   std::vector<int> all;
   if (rows.empty()) {
@@ -435,29 +437,40 @@ void MobilityMatrix::assemble(std::span<const Vec2> points, std::span<const char
       else prepare(points[p], c, t);
     }
   // R is symmetric where reading and spreading use the same stencil (P is an orthogonal projector):
-  // R(a, b) = R(b, a)ᵀ for two separable markers; such entries are copied from the earlier row.
+  // R(a, b) = R(b, a)ᵀ for two separable markers; such entries are copied from the earlier row,
+  // after every row has computed its own (the rows may be computed on several threads).
   std::vector<int> row_of(n, -1);
   for (std::size_t k = 0; k < rows.size(); ++k) row_of[static_cast<std::size_t>(rows[k])] = static_cast<int>(k);
   auto separable = [&](std::size_t p) { return transfer[2 * p].separable && transfer[2 * p + 1].separable; };
   // A marker that spreads onto no face of the fluid (west of a half tank's axis) has zero columns.
   auto spreads = [&](std::size_t p) { return !transfer[2 * p].sources.empty() || !transfer[2 * p + 1].sources.empty(); };
-  for (std::size_t k = 0; k < rows.size(); ++k) {
+  auto copied = [&](std::size_t k, std::size_t a, std::size_t b) {
+    const int l = row_of[b];
+    return l >= 0 && static_cast<std::size_t>(l) < k && separable(a) && separable(b);
+  };
+  auto live = [&](std::size_t b) { return !is_masked(b) && spreads(b); };
+  const auto compute_row = [&](std::size_t k) {
     const auto a = static_cast<std::size_t>(rows[k]);
-    if (is_masked(a)) continue;
+    if (is_masked(a)) return;
     const auto ra = 2 * static_cast<Eigen::Index>(k);
     for (std::size_t b = 0; b < n; ++b) {
-      if (is_masked(b) || !spreads(b)) continue;
+      if (!live(b) || copied(k, a, b)) continue;
       const auto cb = 2 * static_cast<Eigen::Index>(b);
-      const int l = row_of[b];
-      if (l >= 0 && static_cast<std::size_t>(l) < k && separable(a) && separable(b)) {
-        r.block<2, 2>(ra, cb) = r.block<2, 2>(2 * static_cast<Eigen::Index>(l), 2 * static_cast<Eigen::Index>(a)).transpose();
-        continue;
-      }
       for (int c_to = 0; c_to < 2; ++c_to)
         for (int c_from = 0; c_from < 2; ++c_from)
           r(ra + c_to, cb + c_from) = scale * entry(transfer[2 * a + static_cast<std::size_t>(c_to)], c_to,
                                                     transfer[2 * b + static_cast<std::size_t>(c_from)], c_from);
     }
+  };
+  if (pool != nullptr && pool->threads() > 1) pool->run_tasks(rows.size(), compute_row);
+  else for (std::size_t k = 0; k < rows.size(); ++k) compute_row(k);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto a = static_cast<std::size_t>(rows[k]);
+    if (is_masked(a)) continue;
+    for (std::size_t b = 0; b < n; ++b)
+      if (live(b) && copied(k, a, b))
+        r.block<2, 2>(2 * static_cast<Eigen::Index>(k), 2 * static_cast<Eigen::Index>(b)) =
+            r.block<2, 2>(2 * static_cast<Eigen::Index>(row_of[b]), 2 * static_cast<Eigen::Index>(a)).transpose();
   }
 }
 

@@ -186,6 +186,9 @@ ParameterTable make_jellyfish_scene() {
              "mobility: dense marker-space solve (one GMRES iteration per step); none: plain GMRES"),
       number("coupling.mobility_rebuild", "0.0", "cells", Range::closed(0.0, 10.0),
              "a marker may move this far before the mobility matrix is rebuilt (0: every step)"),
+      integer("coupling.threads", "0", 0, 64,
+              "threads that build the marker-space table (0: one per core; one per run inside a batch or sweep); "
+              "the results do not depend on it"),
 
       number("stability.max_speed", "2.0", "m/s", kPositive, "faster fluid or markers = numerical instability"),
       number("stability.max_strain", "1.25", "", kPositive,
@@ -625,6 +628,7 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   k.krylov_max_iterations = static_cast<int>(r.integer("coupling.krylov_max_iterations"));
   k.preconditioner = *coupling::preconditioner_from_string(r.choice("coupling.preconditioner"));
   k.mobility_rebuild_cells = r.number("coupling.mobility_rebuild");
+  k.threads = static_cast<int>(r.integer("coupling.threads"));
 
   s.limits.max_speed_m_per_s = r.number("stability.max_speed");
   s.limits.max_strain = r.number("stability.max_strain");

@@ -55,17 +55,27 @@ constexpr bool kOptimisedBuild = false;  // the sanitizer build (-O1) may round 
 #endif
 
 // The main job exactly as scripts/output-hashes.sh runs it (3D outputs off; the rendering does not
-// write metrics.csv; the preview grid, 96 × 192, so that the sanitizer pass can afford it). The
-// jellyfish simulation has no thread setting; its hash is fixed.
+// write metrics.csv; the preview grid, 96 × 192, so that the sanitizer pass can afford it), its
+// marker-space table built on two threads (`coupling.threads`; the hash was recorded with one).
 TEST(Determinism, MainJobMetricsHaveTheRecordedHash) {
   const std::string h = hash_of(
       std::string("run --set render.png_frames=false --set render.video=false --set render.glb=false "
-                  "--set render.viewer=false") + testing::kPreviewGrid,
+                  "--set render.viewer=false --set coupling.threads=2") + testing::kPreviewGrid,
       "metrics.csv", "determinism_run");
   ASSERT_EQ(h.size(), 64u);
   if (kOptimisedBuild) {
     EXPECT_EQ(h, recorded("run/metrics.csv"));
   }
+}
+
+// IB2d's Hoover–Miller bell (4-point kernel, periodic seams, target points) at N = 32: the
+// marker-space table built on one and on two threads gives the same trajectory, byte for byte.
+TEST(Determinism, HooverMillerIsTheSameForOneAndTwoThreads) {
+  const std::string args = "experiment hoover-miller --grid 32 --cycles 1 --set coupling.threads=";
+  const std::string one = hash_of(args + "1", "trajectory.csv", "determinism_hm1");
+  const std::string two = hash_of(args + "2", "trajectory.csv", "determinism_hm2");
+  ASSERT_EQ(one.size(), 64u);
+  EXPECT_EQ(one, two);
 }
 
 // The SPH larva evaluates its particles on a thread pool: one and two threads give the same bytes.

@@ -144,4 +144,27 @@ TEST(PathChooser, OneStalledJobDoesNotDecideTheTrial) {
 }
 
 }  // namespace
+
+// A task run side by side with others (a pool of several threads) has its core: all cores (0)
+// resolves to one thread there, and again to all cores after; an explicit count is kept.
+TEST(WorkerPool, TasksRunSideBySideResolveAllCoresToOne) {
+  const int all = resolve_threads(0);
+  std::vector<int> seen(4, -1), explicit_count(4, -1);
+  WorkerPool pool(2);
+  pool.run_tasks(seen.size(), [&](std::size_t k) {
+    seen[k] = resolve_threads(0);
+    explicit_count[k] = resolve_threads(3);
+  });
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    EXPECT_EQ(seen[k], 1);
+    EXPECT_EQ(explicit_count[k], 3);
+  }
+  EXPECT_EQ(resolve_threads(0), all);
+  {
+    const SerialThreadsScope scope;
+    EXPECT_EQ(resolve_threads(0), 1);
+  }
+  EXPECT_EQ(resolve_threads(0), all);
+}
+
 }  // namespace jellysim

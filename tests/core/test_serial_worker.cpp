@@ -49,10 +49,17 @@ TEST(SerialWorker, SubmitWaitsWhileTheQueueIsFull) {
 
 TEST(SerialWorker, AJobsErrorComesBackAndTheJobsAfterItAreDropped) {
   std::atomic<int> ran{0};
+  std::atomic<bool> go{false};
   SerialWorker worker(4);
-  worker.submit([&] { ++ran; });
+  // The first job holds the worker until all three are queued: a failure already reported would
+  // make the third submit() rethrow it.
+  worker.submit([&] {
+    while (!go.load()) std::this_thread::yield();
+    ++ran;
+  });
   worker.submit([] { throw std::runtime_error("cannot write frames/field_000001.vti"); });
   worker.submit([&] { ++ran; });
+  go.store(true);
   try {
     worker.drain();
     FAIL() << "drain() must rethrow";

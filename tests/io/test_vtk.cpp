@@ -71,28 +71,30 @@ TEST(VtkOutput, ImageDataArraysDecodeToTheCellValues) {
   EXPECT_NE(text.find("WholeExtent=\"0 6 0 6 0 0\""), std::string::npos);
   EXPECT_NE(text.find("Spacing=\"0.33333333333333331 0.33333333333333331 1\""), std::string::npos);
   EXPECT_EQ(count(text, "<DataArray"), 5u);
+  // The flow's fields are Float32: the values rounded to single precision.
+  EXPECT_EQ(count(text, "type=\"Float32\""), 5u);
   const fluid::Field speed = fluid::speed_at_centres(s.velocity);
-  const std::vector<double> read = read_array<double>(text, "speed");
+  const std::vector<float> read = read_array<float>(text, "speed");
   ASSERT_EQ(read.size(), 36u);
   for (int j = 0; j < 6; ++j)
-    for (int i = 0; i < 6; ++i) EXPECT_EQ(read[static_cast<std::size_t>(6 * j + i)], speed(i, j));
-  const std::vector<double> velocity = read_array<double>(text, "velocity");
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(read[static_cast<std::size_t>(6 * j + i)], static_cast<float>(speed(i, j)));
+  const std::vector<float> velocity = read_array<float>(text, "velocity");
   ASSERT_EQ(velocity.size(), 108u);
   const Vec2 c = fluid::velocity_at_centre(s.velocity, 2, 3);
-  EXPECT_EQ(velocity[3 * (6 * 3 + 2)], c.x);
-  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 1], c.y);
-  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 2], 0.0);
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2)], static_cast<float>(c.x));
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 1], static_cast<float>(c.y));
+  EXPECT_EQ(velocity[3 * (6 * 3 + 2) + 2], 0.0f);
 }
 
 TEST(VtkOutput, LargeArraysSpanSeveralCompressedBlocks) {
-  const fluid::FlowState s = vortex_state(80);  // 6400 cells x 3 x 8 bytes: 5 blocks of 32 KiB
+  const fluid::FlowState s = vortex_state(80);  // 6400 cells x 3 x 4 bytes: 3 blocks of 32 KiB
   std::ostringstream out;
   write_flow_vti(out, s);
-  const std::vector<double> velocity = read_array<double>(out.str(), "velocity");
+  const std::vector<float> velocity = read_array<float>(out.str(), "velocity");
   ASSERT_EQ(velocity.size(), 3u * 6400u);
   const Vec2 c = fluid::velocity_at_centre(s.velocity, 79, 79);
-  EXPECT_EQ(velocity[3 * 6399], c.x);
-  EXPECT_LT(out.str().size(), 8u * 6400u * 7u);  // smaller than the raw doubles
+  EXPECT_EQ(velocity[3 * 6399], static_cast<float>(c.x));
+  EXPECT_LT(out.str().size(), 4u * 6400u * 7u);  // smaller than the raw floats
 }
 
 TEST(VtkOutput, PolyDataCarriesNamedPointAndCellData) {

@@ -24,8 +24,22 @@
 namespace jellysim {
 
 /// The number of threads a `threads` setting asks for: itself when >= 1, all cores
-/// (std::thread::hardware_concurrency, at least 1, at most 64) when 0.
+/// (std::thread::hardware_concurrency, at least 1, at most 64) when 0 — or 1 when 0 is asked on
+/// a thread inside a SerialThreadsScope (a task of a parallel sweep or batch already has its core).
 int resolve_threads(int threads);
+
+/// While alive, resolve_threads(0) on this thread gives 1: work that is itself one of several run
+/// side by side (WorkerPool::run_tasks on several threads, an MPI rank) does not spread further.
+class SerialThreadsScope {
+ public:
+  SerialThreadsScope();
+  ~SerialThreadsScope();
+  SerialThreadsScope(const SerialThreadsScope&) = delete;
+  SerialThreadsScope& operator=(const SerialThreadsScope&) = delete;
+
+ private:
+  bool previous_;
+};
 
 class WorkerPool {
  public:

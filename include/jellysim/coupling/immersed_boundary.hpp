@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/ode/gmres.hpp"
 #include "jellysim/coupling/kernels.hpp"
 #include "jellysim/coupling/mobility.hpp"
@@ -53,6 +54,9 @@ struct CouplingSettings {
   /// The mobility R is rebuilt when a marker has moved this many cells since the last build
   /// (0: every step, when R is exact and GMRES needs one iteration).
   double mobility_rebuild_cells = 0.0;
+  /// Threads that build the planar R (0: one per core, or one inside a sweep's or batch's run;
+  /// resolve_threads). R, and so every result, is the same whatever the number.
+  int threads = 1;
   /// The fluid's west side is a mirror plane (the half tank of a mirror-symmetric scene): markers
   /// west of it and stencils reaching across it read the mirror image of the flow.
   bool west_mirror = false;
@@ -145,6 +149,13 @@ class ImmersedBoundary {
   void prepare_preconditioner(double dt_s, const Eigen::SparseMatrix<double>& stiffness);
   /// out = M⁻¹ in (the antisymmetric part of `in` passes unchanged when the scene is symmetric).
   void apply_preconditioner(const Eigen::VectorXd& in, Eigen::VectorXd& out) const;
+  /// Factors M (preconditioner_matrix_): its rows of target points' unknowns are the identity's
+  /// (their rows of R are zero), so only the block of the moving unknowns is LU-factored.
+  void factor_preconditioner();
+  /// M⁻¹ v on the solve's unknowns (all, or the symmetric ones), from factor_preconditioner().
+  Eigen::VectorXd solve_preconditioner(const Eigen::VectorXd& v) const;
+  /// Sorts the solve's unknowns into those of target points (held_) and the others (moving_).
+  void split_target_unknowns();
   /// v → ½(v + mirror image of v) for marker vectors (x components odd, y even).
   void keep_symmetric_part(Eigen::VectorXd& v) const;
   /// The symmetric unknowns: Q maps them to marker increments, pick_ selects them back.
@@ -180,6 +191,9 @@ class ImmersedBoundary {
   Eigen::SparseMatrix<double> picked_rows_matrix_;  ///< d × (rows of R): selects picked_rows_
   Eigen::MatrixXd reduced_mobility_;                ///< R_s = (picked rows of R) Q
   Eigen::MatrixXd preconditioner_matrix_;           ///< M (or M_s), kept to avoid reallocation
+  std::vector<Eigen::Index> held_, moving_;         ///< unknowns of target points, and the others
+  Eigen::MatrixXd moving_block_, coupling_block_;   ///< M's rows of moving_: columns moving_, held_
+  std::unique_ptr<WorkerPool> pool_;                ///< threads for R (settings_.threads), or none
 };
 
 /// Problems that should stop a run, or "" when none: "numerical instability: ..." (NaN, runaway

@@ -28,6 +28,10 @@
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/grid.hpp"
 
+namespace jellysim {
+class WorkerPool;
+}
+
 namespace jellysim::coupling {
 
 /// A face sample of the box and its weight in a marker's transfer stencil.
@@ -80,9 +84,10 @@ class MobilityMatrix {
   const TransferGeometry& geometry() const { return geometry_; }
   /// The rows of R for the markers `rows` (all markers when empty): a 2|rows| × 2N matrix, R being
   /// the velocity at the markers per unit force (m/s per N/m), unknowns interleaved x0, y0, x1, …
-  /// Rows and columns of masked points (targets) are zero.
+  /// Rows and columns of masked points (targets) are zero. With a pool the rows are shared among
+  /// its threads (each entry is computed alike: the same R whatever the number of threads).
   void assemble(std::span<const Vec2> points, std::span<const char> masked, double density_kg_per_m3,
-                std::span<const int> rows, Eigen::MatrixXd& r) const;
+                std::span<const int> rows, Eigen::MatrixXd& r, WorkerPool* pool = nullptr) const;
 
   /// Response of the box's projection at face (c_to, i_to, j_to) to a unit value on interior face
   /// (c_from, i_from, j_from) (for tests).

@@ -1,7 +1,8 @@
 #pragma once
 // VTK output for ParaView: grid-fluid fields as XML ImageData (.vti, cell-centred arrays), points
 // and springs as XML PolyData (.vtp) with named point and cell data, and a .pvd collection that
-// ties the frames into a time series with named parts. Arrays are raw binary in the file's
+// ties the frames into a time series with named parts (the flow's fields in single precision,
+// the points' positions and data in double). Arrays are raw binary in the file's
 // appended section, zlib-compressed (vtkZLibDataCompressor, 32 KiB blocks), so a frame takes a
 // fraction of the ASCII file's space and time. Writers take a stream or a path; writing atomically
 // (temp file + rename) is the caller's job.
@@ -16,12 +17,14 @@
 namespace jellysim::io {
 
 /// One named data array: `components` values per point or cell, Float64, or Int32 when `integer`
-/// (kinds, flags, ids).
+/// (kinds, flags, ids), or Float32 when `single` (the flow's fields on the grid: half the bytes;
+/// ParaView reads either).
 struct VtkArray {
   std::string name;
   int components = 1;
   std::vector<double> values;  ///< tuples × components
   bool integer = false;
+  bool single = false;
 };
 
 /// Points in the slice plane (z = 0), each a vertex or joined by line segments, with data.
