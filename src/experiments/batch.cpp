@@ -163,23 +163,30 @@ io::Config Batch::config(std::size_t k) const {
   return c;
 }
 
-/// Every run of a plan of at most kValidateEveryRun runs (and every [[runs]] table: each was
-/// written out); of a larger [product], runs in which every value of every key appears at least
-/// once (run t takes value t mod n of a key of n values, for t below the longest list's length):
-/// a value wrong whatever it is combined with is found before anything runs, a combination wrong
-/// only together when its run starts (a failed row).
+/// Every run of a plan of at most kValidateEveryRun runs; of a larger plan, runs that together
+/// hold every value of every key, so that a value wrong whatever it is combined with is found
+/// before anything runs (a combination wrong only together is found when its run starts: a failed
+/// row). [product]: run t takes value t mod n of a key of n values, for t below the longest list's
+/// length. [[runs]]: the first run that holds a value (or leaves every key to the scene).
 std::vector<std::size_t> Batch::runs_to_validate() const {
   std::vector<std::size_t> runs;
-  if (size() <= kValidateEveryRun || plan_.product.empty()) {
+  if (size() <= kValidateEveryRun) {
     for (std::size_t k = 0; k < size(); ++k) runs.push_back(k);
-    return runs;
-  }
-  std::size_t longest = 0;
-  for (const auto& values : plan_.product) longest = std::max(longest, values.size());
-  for (std::size_t t = 0; t < longest; ++t) {
-    std::size_t k = 0;
-    for (const auto& values : plan_.product) k = k * values.size() + t % values.size();
-    runs.push_back(k);
+  } else if (!plan_.product.empty()) {
+    std::size_t longest = 0;
+    for (const auto& values : plan_.product) longest = std::max(longest, values.size());
+    for (std::size_t t = 0; t < longest; ++t) {
+      std::size_t k = 0;
+      for (const auto& values : plan_.product) k = k * values.size() + t % values.size();
+      runs.push_back(k);
+    }
+  } else {
+    std::set<std::pair<std::size_t, std::optional<std::string>>> seen;
+    for (std::size_t k = 0; k < size(); ++k) {
+      bool adds = false;
+      for (std::size_t i = 0; i < plan_.keys.size(); ++i) adds = seen.insert({i, plan_.listed[k][i]}).second || adds;
+      if (adds) runs.push_back(k);
+    }
   }
   return runs;
 }

@@ -265,6 +265,17 @@ TEST(BatchPlan, AHugePlanIsRefusedAndALargeProductValidatedByItsValues) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("tank.viscosity"), std::string::npos) << e.what();
   }
+  // 1500 [[runs]]: each value checked once, in the first run that holds it.
+  std::string listed = kQuick;
+  for (int k = 0; k < 1500; ++k) listed += std::string("[[runs]]\n\"jellyfish.frequency\" = ") + (k % 2 ? "0.9\n" : "0.5\n");
+  EXPECT_EQ(jellysim::experiments::Batch(parse_batch_plan(listed, dir / "plan.toml"), {}, dir / "out").size(), 1500u);
+  try {
+    const jellysim::experiments::Batch bad(parse_batch_plan(listed + "[[runs]]\n\"jellyfish.frequency\" = 9.0\n",
+                                                            dir / "plan.toml"), {}, dir / "out");
+    ADD_FAILURE() << "a list of runs with a value out of range was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run 1500 (jellyfish.frequency=9)"), std::string::npos) << e.what();
+  }
   EXPECT_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);
 }
@@ -275,7 +286,8 @@ TEST(BatchPlan, AHugePlanIsRefusedAndALargeProductValidatedByItsValues) {
 // is refused (exit 2): a batch writes only inside its --out.
 TEST(BatchCli, AResumeRedoesRunsWhoseFilesAreNotWhatTheRunWrote) {
   const fs::path dir = cli::fresh_scratch_dir("batch_distrust");
-  const fs::path plan = write_plan(dir, std::string(kQuick) + "[product]\n\"jellyfish.frequency\" = [0.5, 0.7, 0.9]\n");
+  const fs::path plan = write_plan(dir, replace_all(kQuick, "duration = 0.1", "duration = 0.05") +
+                                             "[product]\n\"jellyfish.frequency\" = [0.5, 0.7, 0.9]\n");
   const fs::path out = dir / "out";
   const std::string command = "batch " + plan.string() + " --threads 1 --out " + out.string();
   ASSERT_EQ(cli::run_jellysim(command + " --quiet").exit_code, 0);

@@ -59,8 +59,8 @@ class Batch {
 
   /// Resolves each run: the built-in jellyfish scene, the plan's scene file, duration, [set], the
   /// command line's `sets`, then the run's overrides; each is validated as `simulate` would (a
-  /// [product] of more than kValidateEveryRun runs: runs that hold every value of every key, see
-  /// runs_to_validate). Throws InputError naming the plan file, the run and the field.
+  /// plan of more than kValidateEveryRun runs: runs that together hold every value of every key,
+  /// see runs_to_validate). Throws InputError naming the plan file, the run and the field.
   Batch(BatchPlan plan, const std::vector<std::string>& sets, std::filesystem::path out);
 
   std::size_t size() const { return plan_.run_count(); }
@@ -74,7 +74,8 @@ class Batch {
   /// Locks DIR for the batch's life (another batch or run there: InputError naming its pid), checks
   /// it (new, or holding only an earlier batch's files, no symbolic link: else InputError, nothing touched),
   /// clears the directories of unfinished runs and returns the runs still to do, in order. The
-  /// rows of finished runs (summary.json complete, same configuration) are kept for tables().
+  /// rows of finished runs (summary.json a regular file, complete, every figure a number, the same
+  /// configuration; every file of the run's manifest there) are kept for tables().
   std::vector<std::size_t> prepare_directory();
   /// One row per run before any runs: the rows of the runs prepare_directory() found finished,
   /// the others marked unfinished (interrupted) until a row for them comes in.
