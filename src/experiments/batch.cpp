@@ -103,9 +103,16 @@ std::string string_field(const nlohmann::ordered_json& summary, const char* key)
   return it != summary.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
-/// Every figure batch.csv takes is there, a number (null: a value that was not finite).
+/// The first kFigures that only a scene with a jellyfish has (swim_figures: jellyfish_count > 0).
+constexpr std::size_t kJellyfishFigures = 9;
+
+/// Every figure batch.csv takes that the run has is there, a number (null: a value that was not
+/// finite); a run without a jellyfish has no jellyfish figures.
 bool figures_complete(const nlohmann::ordered_json& summary) {
-  return std::all_of(kFigures.begin(), kFigures.end(), [&](const std::string& figure) {
+  const auto count = summary.find("jellyfish_count");
+  if (count == summary.end() || !count->is_number_unsigned()) return false;
+  const std::size_t first = count->get<std::size_t>() > 0 ? 0 : kJellyfishFigures;
+  return std::all_of(kFigures.begin() + static_cast<std::ptrdiff_t>(first), kFigures.end(), [&](const std::string& figure) {
     const auto it = summary.find(figure);
     return it != summary.end() && (it->is_number() || it->is_null());
   });
