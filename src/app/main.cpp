@@ -159,8 +159,8 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
   js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
   const js::experiments::Outcome outcome = run(out);
-  out.finish_manifest();
   const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
+  out.finish_manifest(resumable);  // a resumable run keeps its id, which its checkpoint carries
   const std::string resume_hint =
       resumable ? "  (continue it with: jellysim simulate --resume " + out.path().string() + ")\n" : "";
   if (const int signal = js::core::interrupt_signal(); signal != 0 && !outcome.failure.empty()) {
@@ -213,8 +213,8 @@ int resume_simulation(const std::string& dir, bool quiet) {
   std::optional<js::io::Config> scene;
   if (!c.scene_text.empty()) scene = js::io::Config::parse(c.scene_text, c.scene_source);
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
-  checkpoints->resume = std::move(c.state);
   checkpoints->how = std::move(c);
+  checkpoints->resume = true;
   o.checkpoints = std::move(checkpoints);
   return run_experiment(js::experiments::find_experiment("jellyfish"), scene, o);
 }

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <mutex>
 #include <set>
+#include <sstream>
 
 namespace jellysim::experiments {
 namespace fs = std::filesystem;
@@ -49,8 +50,9 @@ std::string value_cell(const std::optional<std::string>& literal) {
 
 std::string describe_run(const BatchPlan& plan, std::size_t k) {
   std::string text;
+  const std::vector<std::optional<std::string>> cells = plan.run(k);
   for (std::size_t i = 0; i < plan.keys.size(); ++i)
-    if (plan.runs[k][i]) text += (text.empty() ? "" : ", ") + plan.keys[i] + "=" + *plan.runs[k][i];
+    if (cells[i]) text += (text.empty() ? "" : ", ") + plan.keys[i] + "=" + *cells[i];
   return "run " + std::to_string(k) + (text.empty() ? "" : " (" + text + ")");
 }
 
@@ -73,14 +75,60 @@ io::Config base_config(const BatchPlan& plan, const std::vector<std::string>& se
   return c;
 }
 
-std::optional<nlohmann::ordered_json> read_json(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
+/// A run's own small files (summary.json, manifest.txt): at most this many bytes.
+constexpr std::uintmax_t kMaxRunFileBytes = 16u << 20;
+
+/// A file a run wrote, as it is: only a regular file, never through a link (none when it is not one).
+std::optional<std::string> read_run_file(const fs::path& path) {
   try {
-    return nlohmann::ordered_json::parse(in);
+    return io::read_regular_file(path, kMaxRunFileBytes, false);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<nlohmann::ordered_json> read_json(const fs::path& path) {
+  const std::optional<std::string> text = read_run_file(path);
+  if (!text) return std::nullopt;
+  try {
+    return nlohmann::ordered_json::parse(*text);
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
   }
+}
+
+/// summary[key] when it is a string, else "" (an edited summary may hold anything).
+std::string string_field(const nlohmann::ordered_json& summary, const char* key) {
+  const auto it = summary.find(key);
+  return it != summary.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+/// The first kFigures that only a scene with a jellyfish has (swim_figures: jellyfish_count > 0).
+constexpr std::size_t kJellyfishFigures = 9;
+
+/// Every figure batch.csv takes that the run has is there, a number (null: a value that was not
+/// finite); a run without a jellyfish has no jellyfish figures.
+bool figures_complete(const nlohmann::ordered_json& summary) {
+  const auto count = summary.find("jellyfish_count");
+  if (count == summary.end() || !count->is_number_unsigned()) return false;
+  const std::size_t first = count->get<std::size_t>() > 0 ? 0 : kJellyfishFigures;
+  return std::all_of(kFigures.begin() + static_cast<std::ptrdiff_t>(first), kFigures.end(), [&](const std::string& figure) {
+    const auto it = summary.find(figure);
+    return it != summary.end() && (it->is_number() || it->is_null());
+  });
+}
+
+/// Every file the run's manifest lists is there, a regular file (not a link).
+bool manifest_files_present(const fs::path& dir) {
+  const std::optional<std::string> manifest = read_run_file(dir / io::kManifestName);
+  if (!manifest) return false;
+  std::istringstream lines(*manifest);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line.front() == '#') continue;
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::symlink_status(dir / line, ec))) return false;
+  }
+  return true;
 }
 
 bool digits_only(const std::string& s) {
@@ -99,25 +147,55 @@ std::vector<std::string> batch_csv_columns(const BatchPlan& plan) {
 
 Batch::Batch(BatchPlan plan, const std::vector<std::string>& sets, fs::path out)
     : plan_(std::move(plan)), out_(std::move(out)) {
-  const std::string file = plan_.file.string();
-  io::Config base;
   try {
-    base = base_config(plan_, sets);
+    base_ = base_config(plan_, sets);
   } catch (const InputError& e) {
-    throw InputError(file + ": " + e.what());
+    throw InputError(plan_.file.string() + ": " + e.what());
   }
-  for (std::size_t k = 0; k < plan_.runs.size(); ++k) {
-    io::Config c = base;
+  for (std::size_t k : runs_to_validate()) {
     try {
-      for (std::size_t i = 0; i < plan_.keys.size(); ++i)
-        if (plan_.runs[k][i]) c.set(plan_.keys[i] + "=" + *plan_.runs[k][i]);
-      simulate_experiment().prepare(Context{c, {}});  // validates as `simulate` would; runs nothing
+      simulate_experiment().prepare(Context{config(k), {}});  // validates as `simulate` would; runs nothing
     } catch (const InputError& e) {
-      throw InputError(file + ": " + describe_run(plan_, k) + ": " + e.what());
+      throw InputError(plan_.file.string() + ": " + describe_run(plan_, k) + ": " + e.what());
     }
-    configs_.push_back(std::move(c));
   }
-  resumed_.resize(configs_.size());
+  resumed_.resize(size());
+}
+
+io::Config Batch::config(std::size_t k) const {
+  io::Config c = base_;
+  const std::vector<std::optional<std::string>> cells = plan_.run(k);
+  for (std::size_t i = 0; i < plan_.keys.size(); ++i)
+    if (cells[i]) c.set(plan_.keys[i] + "=" + *cells[i]);
+  return c;
+}
+
+/// Every run of a plan of at most kValidateEveryRun runs; of a larger plan, runs that together
+/// hold every value of every key, so that a value wrong whatever it is combined with is found
+/// before anything runs (a combination wrong only together is found when its run starts: a failed
+/// row). [product]: run t takes value t mod n of a key of n values, for t below the longest list's
+/// length. [[runs]]: the first run that holds a value (or leaves every key to the scene).
+std::vector<std::size_t> Batch::runs_to_validate() const {
+  std::vector<std::size_t> runs;
+  if (size() <= kValidateEveryRun) {
+    for (std::size_t k = 0; k < size(); ++k) runs.push_back(k);
+  } else if (!plan_.product.empty()) {
+    std::size_t longest = 0;
+    for (const auto& values : plan_.product) longest = std::max(longest, values.size());
+    for (std::size_t t = 0; t < longest; ++t) {
+      std::size_t k = 0;
+      for (const auto& values : plan_.product) k = k * values.size() + t % values.size();
+      runs.push_back(k);
+    }
+  } else {
+    std::set<std::pair<std::size_t, std::optional<std::string>>> seen;
+    for (std::size_t k = 0; k < size(); ++k) {
+      bool adds = false;
+      for (std::size_t i = 0; i < plan_.keys.size(); ++i) adds = seen.insert({i, plan_.listed[k][i]}).second || adds;
+      if (adds) runs.push_back(k);
+    }
+  }
+  return runs;
 }
 
 fs::path Batch::run_dir(std::size_t k) const {
@@ -129,7 +207,7 @@ fs::path Batch::run_dir(std::size_t k) const {
 
 std::vector<std::string> Batch::row_cells(std::size_t k, const nlohmann::ordered_json& summary, bool failed) const {
   std::vector<std::string> cells{std::to_string(k)};
-  for (const auto& value : plan_.runs[k]) cells.push_back(value_cell(value));
+  for (const auto& value : plan_.run(k)) cells.push_back(value_cell(value));
   for (const std::string& figure : kFigures)
     cells.push_back(summary.contains(figure) ? json_cell(summary[figure]) : "");
   cells.push_back(failed ? "true" : "false");
@@ -140,15 +218,17 @@ std::vector<std::string> Batch::row_cells(std::size_t k, const nlohmann::ordered
 /// records the configuration this plan gives the run.
 std::optional<BatchRow> Batch::finished_row(std::size_t k) const {
   const std::optional<nlohmann::ordered_json> summary = read_json(run_dir(k) / "summary.json");
-  if (!summary || !summary->is_object() || summary->value("command", "") != "simulate") return std::nullopt;
-  const std::string status = summary->value("status", "");
+  if (!summary || !summary->is_object() || string_field(*summary, "command") != "simulate") return std::nullopt;
+  const std::string status = string_field(*summary, "status");
   if (status != "ok" && status != "failed") return std::nullopt;
-  if (!summary->contains("config") || (*summary)["config"] != configs_[k].to_json()) return std::nullopt;
+  if (!summary->contains("config") || (*summary)["config"] != config(k).to_json()) return std::nullopt;
+  if (!figures_complete(*summary) || !manifest_files_present(run_dir(k))) return std::nullopt;
   BatchRow row;
   row.failed = status == "failed";
   row.cells = row_cells(k, *summary, row.failed);
-  row.failure = summary->value("failure", "");
-  row.wall_seconds = summary->value("wall_seconds", 0.0);
+  row.failure = string_field(*summary, "failure");
+  const auto wall = summary->find("wall_seconds");
+  row.wall_seconds = wall != summary->end() && wall->is_number() ? wall->get<double>() : 0.0;
   row.resumed = true;
   return row;
 }
@@ -163,8 +243,16 @@ void check_batch_directory(const Batch& batch) {
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) throw InputError("--out '" + dir.string() + "' is not a directory");
   const std::string width = batch.run_dir(0).filename().string();
+  // Links are never followed: the batch writes only inside DIR.
+  const auto refuse_link = [&](const fs::directory_entry& entry, const std::string& name) {
+    if (entry.is_symlink())
+      throw InputError("--out '" + dir.string() + "': '" + name + "' is a symbolic link; a batch writes only inside " +
+                       "its own directory: remove the link, or give a new directory");
+  };
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
+    if (name == io::kLockName) continue;  // the batch's lock (held)
+    refuse_link(entry, name);
     if ((kBatchFiles.contains(name) || name.find(".tmp-") != std::string::npos) && entry.is_regular_file()) continue;
     if (name == "runs" && entry.is_directory()) continue;
     throw InputError("--out '" + dir.string() + "' holds '" + name + "', which is not a batch's: give a new directory");
@@ -172,6 +260,7 @@ void check_batch_directory(const Batch& batch) {
   if (!fs::is_directory(dir / "runs", ec)) return;
   for (const auto& entry : fs::directory_iterator(dir / "runs")) {
     const std::string name = entry.path().filename().string();
+    refuse_link(entry, "runs/" + name);
     if (entry.is_directory() && digits_only(name) && name.size() == width.size() && std::stoul(name) < batch.size())
       continue;
     throw InputError("--out '" + dir.string() + "' holds runs/" + name + ", which this plan (" +
@@ -182,6 +271,7 @@ void check_batch_directory(const Batch& batch) {
 }  // namespace
 
 std::vector<std::size_t> Batch::prepare_directory() {
+  lock_ = io::lock_directory(out_, "--out");  // held for the batch's life: one batch (or run) in DIR at a time
   check_batch_directory(*this);
   std::vector<std::size_t> todo;
   for (std::size_t k = 0; k < size(); ++k) {
@@ -211,12 +301,12 @@ BatchRow Batch::run(std::size_t k) const {
   const auto start = std::chrono::steady_clock::now();
   BatchRow row;
   try {
-    const auto go = simulate_experiment().prepare(Context{configs_[k], {}});
+    const auto go = simulate_experiment().prepare(Context{config(k), {}});
     const io::OutputDir out = io::OutputDir::for_run(run_dir(k), simulate_experiment().name);
     const Outcome outcome = go(out);
     out.finish_manifest();
     const nlohmann::ordered_json summary = read_json(run_dir(k) / "summary.json").value_or(nlohmann::ordered_json::object());
-    row.interrupted = summary.value("status", "") == "interrupted";
+    row.interrupted = string_field(summary, "status") == "interrupted";
     row.failed = !outcome.failure.empty();
     row.failure = outcome.failure;
     row.cells = row_cells(k, summary, row.failed);

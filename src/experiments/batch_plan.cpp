@@ -9,8 +9,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
+#include <stdexcept>
 
 namespace jellysim::experiments {
 namespace {
@@ -101,15 +100,7 @@ void read_product(const toml::node& node, const std::string& file, BatchPlan& pl
     if (count > kMaxRuns) throw InputError(where + ": the product has more than " + std::to_string(kMaxRuns) + " runs");
   }
   if (plan.keys.empty()) throw InputError(file + ": field 'product' is empty: give at least one key = [values]");
-  for (std::size_t run = 0; run < count; ++run) {
-    std::vector<std::optional<std::string>> cells(values.size());
-    std::size_t rest = run;
-    for (std::size_t k = values.size(); k-- > 0;) {
-      cells[k] = values[k][rest % values[k].size()];
-      rest /= values[k].size();
-    }
-    plan.runs.push_back(std::move(cells));
-  }
+  plan.product = std::move(values);
 }
 
 /// [[runs]]: one table per run; the columns are every key in order of first appearance.
@@ -132,7 +123,7 @@ void read_runs(const toml::node& node, const std::string& file, BatchPlan& plan)
     std::vector<std::optional<std::string>> cells(plan.keys.size());
     for (const auto& [key, value] : run)
       cells[static_cast<std::size_t>(std::find(plan.keys.begin(), plan.keys.end(), key) - plan.keys.begin())] = value;
-    plan.runs.push_back(std::move(cells));
+    plan.listed.push_back(std::move(cells));
   }
 }
 
@@ -157,6 +148,24 @@ void read_top_level(const toml::table& table, const std::string& file, BatchPlan
 
 }  // namespace
 
+std::size_t BatchPlan::run_count() const {
+  if (product.empty()) return listed.size();
+  std::size_t count = 1;
+  for (const auto& values : product) count *= values.size();
+  return count;
+}
+
+std::vector<std::optional<std::string>> BatchPlan::run(std::size_t k) const {
+  if (product.empty()) return listed.at(k);
+  if (k >= run_count()) throw std::out_of_range("batch plan: no run " + std::to_string(k));
+  std::vector<std::optional<std::string>> cells(product.size());
+  for (std::size_t i = product.size(); i-- > 0;) {
+    cells[i] = product[i][k % product[i].size()];
+    k /= product[i].size();
+  }
+  return cells;
+}
+
 BatchPlan parse_batch_plan(std::string_view text, const std::filesystem::path& file) {
   const std::string name = file.string();
   toml::table table;
@@ -178,14 +187,14 @@ BatchPlan parse_batch_plan(std::string_view text, const std::filesystem::path& f
 }
 
 BatchPlan read_batch_plan(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw InputError("cannot read plan file '" + file.string() + "': not a regular file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError("cannot read plan file '" + file.string() + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_batch_plan(text.str(), file);
+  // A plan is a small regular file, like a scene file (never a pipe or a device; at most 1 MiB).
+  std::string text;
+  try {
+    text = io::read_regular_file(file, io::Config::kMaxSceneFileBytes, true);
+  } catch (const InputError& e) {
+    throw InputError("plan file: " + std::string(e.what()) + " (a plan is a regular file, like a scene file)");
+  }
+  return parse_batch_plan(text, file);
 }
 
 }  // namespace jellysim::experiments

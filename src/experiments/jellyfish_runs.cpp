@@ -1,6 +1,7 @@
 #include "jellysim/elastic/spring_assembly.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -191,6 +192,44 @@ void archive_recording(core::StateArchive& a, SwimRecording& rec) {
   a.nested("tracers", rec.tracers);
 }
 
+/// The files the scene read besides the scene file (IB2d structures'), in scene order.
+std::vector<std::string> scene_inputs(const jellyfish::SwimSettings& settings) {
+  std::vector<std::string> files;
+  for (const jellyfish::Ib2dObjectSpec& st : settings.structures) files.insert(files.end(), st.files.begin(), st.files.end());
+  return files;
+}
+
+/// A resumed run reads the files its scene read when it was checkpointed, no more and no fewer:
+/// else its bodies are not those of the checkpoint (InputError naming the file).
+void check_scene_inputs(const io::Checkpoint& c, const jellyfish::SwimSettings& settings) {
+  const std::vector<std::string> now = scene_inputs(settings);
+  const std::string resuming = "--resume: the checkpointed run ('" + c.file.string() + "') read ";
+  for (const std::string& file : c.inputs)
+    if (std::find(now.begin(), now.end(), file) == now.end())
+      throw InputError(resuming + "the scene's file '" + file + "', which is missing now: restore it to resume");
+  for (const std::string& file : now)
+    if (std::find(c.inputs.begin(), c.inputs.end(), file) == c.inputs.end())
+      throw InputError(resuming + "no file '" + file + "', which the scene reads now: remove it to resume");
+}
+
+/// The most bytes a checkpoint's state can hold for `settings`: what the run holds in memory
+/// (its estimate, an upper bound) with a margin, plus the tracers (not in the estimate).
+double most_state_bytes(const jellyfish::SwimSettings& settings) {
+  const double tracers = static_cast<double>(settings.tank.tracers_per_side) * settings.tank.tracers_per_side;
+  return 2.0 * jellyfish::estimate_memory(settings).bytes + 64.0 * tracers;
+}
+
+/// A resumed run: the simulation and the recording as the checkpoint has them, once the scene's
+/// files and the state's size are known to be this run's.
+void restore_checkpoint(const io::Checkpoint& c, const jellyfish::SwimSettings& settings, jellyfish::SwimSimulation& sim,
+                        SwimRecording& rec) {
+  check_scene_inputs(c, settings);
+  core::StateArchive state = core::StateArchive::restoring(io::read_checkpoint_state(c, most_state_bytes(settings)));
+  sim.restore_state(state);
+  archive_recording(state, rec);
+  state.check_all_read();
+}
+
 /// When the next checkpoint is due: the first multiple of `every` after t.
 double next_checkpoint_time(double t, double every) { return (std::floor(t / every + 1e-9) + 1.0) * every; }
 
@@ -273,10 +312,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   rec.others.resize(sim.jellyfish_count() > 1 ? sim.jellyfish_count() - 1 : 0);
   std::size_t frame = 0;
   if (checkpoints && checkpoints->resume) {
-    core::StateArchive state = core::StateArchive::restoring(*checkpoints->resume);
-    sim.restore_state(state);
-    archive_recording(state, rec);
-    state.check_all_read();
+    restore_checkpoint(checkpoints->how, settings, sim, rec);
     frame = rec.frame_times.size();
     if (files) files->continue_after(rec.frame_times);
   }
@@ -289,6 +325,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
     s.save_state(state);
     archive_recording(state, rec);
     io::Checkpoint c = checkpoints->how;
+    c.inputs = scene_inputs(settings);
     c.state = state.take_entries();
     io::write_checkpoint(*out, c);
     next_checkpoint = next_checkpoint_time(s.time_s(), every);

@@ -396,6 +396,16 @@ std::string springs_text(const std::vector<Ib2dSpring>& springs, bool damped) {
 
 }  // namespace
 
+std::vector<std::filesystem::path> ib2d_files_present(const std::filesystem::path& stem) {
+  std::vector<fs::path> present;
+  for (const Format* format : {&kVertex, &kSpring, &kDampedSpring, &kBeam, &kNonInvariantBeam, &kTarget}) {
+    std::error_code ec;
+    const fs::path path = file_of(stem, *format);
+    if (fs::symlink_status(path, ec).type() != fs::file_type::not_found) present.push_back(path);  // as read_text tells
+  }
+  return present;
+}
+
 Ib2dStructure read_ib2d_structure(const std::filesystem::path& stem) {
   Ib2dStructure s;
   read_list<Vec2>(stem, kVertex, true, 0, s.vertices, [](const Row& r) { return Vec2{r.number(0), r.number(1)}; });

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <mutex>
@@ -16,6 +17,7 @@
 #include <system_error>
 #include <vector>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -96,13 +98,135 @@ void write_file_atomically(const fs::path& target, std::string_view content) {
   }
 }
 
+namespace {
+
+/// "regular file", "directory", "named pipe", ... for messages.
+std::string kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a named pipe";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+}  // namespace
+
+std::string read_regular_file(const fs::path& path, std::uintmax_t max_bytes, bool follow_links) {
+  // O_NONBLOCK: opening a named pipe does not wait for a writer; fstat then refuses it.
+  Descriptor d{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | (follow_links ? 0 : O_NOFOLLOW))};
+  if (d.fd < 0) {
+    if (errno == ELOOP) throw InputError("'" + path.string() + "' is a symbolic link, not a regular file");
+    throw InputError("cannot read '" + path.string() + "': " + os_reason(errno));
+  }
+  struct stat st {};
+  if (::fstat(d.fd, &st) != 0) throw InputError("cannot read '" + path.string() + "': " + os_reason(errno));
+  if (!S_ISREG(st.st_mode)) throw InputError("'" + path.string() + "' is " + kind_of(st.st_mode) + ", not a regular file");
+  const auto bytes = static_cast<std::uintmax_t>(st.st_size);
+  if (bytes > max_bytes)
+    throw InputError("'" + path.string() + "' is " + std::to_string(bytes) + " bytes; at most " + std::to_string(max_bytes));
+  std::string text(static_cast<std::size_t>(bytes), '\0');
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const ssize_t n = ::read(d.fd, text.data() + at, text.size() - at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError("cannot read '" + path.string() + "': " + os_reason(errno));
+    if (n == 0) break;  // shorter than fstat said: it shrank meanwhile
+    at += static_cast<std::size_t>(n);
+  }
+  text.resize(at);
+  return text;
+}
+
+class DirectoryLock {
+ public:
+  DirectoryLock(fs::path file, int fd) : file_(std::move(file)), fd_(fd) {}
+  ~DirectoryLock() {
+    ::unlink(file_.c_str());  // while still locked: a run waiting on this file then sees it gone (acquire's check)
+    ::close(fd_);
+  }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  fs::path file_;
+  int fd_;
+};
+
+namespace {
+
+/// The holder's pid as its lock file says (" (pid N)"), or "".
+std::string lock_holder(int fd) {
+  char buf[32] = {};
+  const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+  std::string pid = n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : "";
+  while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+  const bool digits = !pid.empty() && std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return digits ? " (pid " + pid + ")" : "";
+}
+
+/// Whether `fd` is still the file at `path` (not one a releasing run unlinked meanwhile).
+bool still_linked(int fd, const fs::path& path) {
+  struct stat open_file {}, named {};
+  return ::fstat(fd, &open_file) == 0 && ::lstat(path.c_str(), &named) == 0 && open_file.st_dev == named.st_dev &&
+         open_file.st_ino == named.st_ino;
+}
+
+}  // namespace
+
+std::shared_ptr<DirectoryLock> lock_directory(const fs::path& dir, std::string_view option) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec))
+    throw RunError("cannot create output directory '" + dir.string() + "': " + ec.message());
+  const fs::path file = dir / kLockName;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    Descriptor d{::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644)};
+    if (d.fd < 0)
+      throw InputError(std::string(option) + " '" + dir.string() + "': cannot open its lock file '" + file.string() +
+                       "': " + os_reason(errno));
+    if (::flock(d.fd, LOCK_EX | LOCK_NB) != 0) {
+      if (errno != EWOULDBLOCK) throw RunError("cannot lock '" + file.string() + "': " + os_reason(errno));
+      throw InputError(std::string(option) + " '" + dir.string() + "' is in use by another jellysim run" +
+                       lock_holder(d.fd) + ", which holds '" + file.string() +
+                       "': wait for it to end, or choose another directory");
+    }
+    if (!still_linked(d.fd, file)) continue;  // released and removed meanwhile: lock the new one
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(d.fd, 0) != 0 || ::pwrite(d.fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size()))
+      throw RunError("cannot write '" + file.string() + "': " + os_reason(errno));
+    auto lock = std::make_shared<DirectoryLock>(file, d.fd);
+    d.fd = -1;
+    return lock;
+  }
+  throw RunError("cannot lock '" + file.string() + "': it keeps being replaced");
+}
+
+namespace {
+
+/// 128 random bits as 32 hexadecimal digits.
+std::string new_run_id() {
+  std::random_device device;
+  std::string id;
+  for (int k = 0; k < 4; ++k) {
+    char buf[9];
+    std::snprintf(buf, sizeof buf, "%08x", static_cast<unsigned>(device()));
+    id += buf;
+  }
+  return id;
+}
+
+constexpr std::string_view kRunIdOpen = " [run ", kRunIdClose = "]";
+
+}  // namespace
+
 /// The files a run wrote, kept on disk as the list grows, so a killed run still leaves it right.
+/// Its first line names the command and, while the run can be resumed, the run's id.
 class RunManifest {
  public:
   /// `names`: an earlier run's outputs that this run continues (a resumed run).
-  RunManifest(fs::path file, std::string header, std::set<std::string> names = {})
-      : file_(std::move(file)), header_(std::move(header)), names_(std::move(names)) {
-    write_whole();
+  RunManifest(fs::path file, std::string_view command, std::string run_id, std::set<std::string> names = {})
+      : file_(std::move(file)), command_(command), run_id_(std::move(run_id)), names_(std::move(names)) {
+    write_whole(true);
   }
   void record(const std::string& relative) {
     const std::lock_guard lock(mutex_);
@@ -111,27 +235,40 @@ class RunManifest {
     if (d.fd < 0) throw RunError("cannot write '" + file_.string() + "': " + os_reason(errno));
     write_all(d.fd, relative + '\n', file_);
   }
-  void finish() {
+  void finish(bool keep_run_id) {
     const std::lock_guard lock(mutex_);
-    write_whole();
+    write_whole(keep_run_id);
   }
   void forget(const std::string& relative) {
     const std::lock_guard lock(mutex_);
-    if (names_.erase(relative) > 0) write_whole();
+    if (names_.erase(relative) > 0) write_whole(true);
   }
+  const std::string& run_id() const { return run_id_; }
 
  private:
-  void write_whole() const {
-    std::string text = header_;
+  void write_whole(bool with_run_id) const {
+    std::string text = "# jellysim " + command_ +
+                       ": the files of this run; a later run into this directory removes them first" +
+                       (with_run_id ? std::string(kRunIdOpen) + run_id_ + std::string(kRunIdClose) : "") + "\n";
     for (const std::string& n : names_) text += n + '\n';
     write_file_atomically(file_, text);
   }
 
   std::mutex mutex_;
   fs::path file_;
-  std::string header_;
+  std::string command_, run_id_;
   std::set<std::string> names_;
 };
+
+std::string manifest_run_id(const fs::path& dir) {
+  std::ifstream in(dir / kManifestName);
+  std::string first;
+  if (!std::getline(in, first) || !first.starts_with('#') || !first.ends_with(kRunIdClose)) return "";
+  const std::size_t at = first.rfind(kRunIdOpen);
+  if (at == std::string::npos) return "";
+  const std::size_t from = at + kRunIdOpen.size();
+  return first.substr(from, first.size() - kRunIdClose.size() - from);
+}
 
 namespace {
 
@@ -177,6 +314,7 @@ EarlierRun scan_earlier_run(const fs::path& dir, std::string_view option) {
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     const std::string relative = it->path().lexically_relative(dir).generic_string();
+    if (relative == kLockName) continue;  // the lock of the run that scans (held: lock_directory)
     if (it->is_directory() && !it->is_symlink()) {
       run.folders.push_back(it->path());
     } else if (is_leftover_temporary(it->path().filename().string())) {
@@ -217,13 +355,13 @@ void clear_earlier_run(const fs::path& dir) {
 
 OutputDir OutputDir::for_run(std::filesystem::path dir, std::string_view command) {
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+  if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
     throw InputError("--out '" + dir.string() + "' is a file, not a directory");
-  if (fs::is_directory(dir, ec)) clear_earlier_run(dir);
+  std::shared_ptr<DirectoryLock> lock = lock_directory(dir, "--out");
+  clear_earlier_run(dir);
   OutputDir out(std::move(dir));
-  out.manifest_ = std::make_shared<RunManifest>(
-      out.dir_ / kManifestName, "# jellysim " + std::string(command) +
-                                    ": the files of this run; a later run into this directory removes them first\n");
+  out.lock_ = std::move(lock);
+  out.manifest_ = std::make_shared<RunManifest>(out.dir_ / kManifestName, command, new_run_id());
   return out;
 }
 
@@ -232,13 +370,15 @@ OutputDir OutputDir::for_resumed_run(std::filesystem::path dir, std::string_view
   if (!fs::is_regular_file(dir / kManifestName, ec))
     throw InputError("--resume '" + dir.string() + "': not the results directory of a jellysim run (no " +
                      std::string(kManifestName) + ")");
+  std::shared_ptr<DirectoryLock> lock = lock_directory(dir, "--resume");
   EarlierRun earlier = scan_earlier_run(dir, "--resume");
   for (const fs::path& p : earlier.temporaries) fs::remove(p, ec);
+  std::string run_id = manifest_run_id(dir);
   OutputDir out(std::move(dir));
-  out.manifest_ = std::make_shared<RunManifest>(
-      out.dir_ / kManifestName, "# jellysim " + std::string(command) +
-                                    ": the files of this run; a later run into this directory removes them first\n",
-      std::move(earlier.outputs));
+  out.lock_ = std::move(lock);
+  out.manifest_ = std::make_shared<RunManifest>(out.dir_ / kManifestName, command,
+                                                run_id.empty() ? new_run_id() : std::move(run_id),
+                                                std::move(earlier.outputs));
   return out;
 }
 
@@ -252,13 +392,16 @@ void OutputDir::remove(std::string_view name) const {
 OutputDir OutputDir::subdirectory(std::string_view name) const {
   OutputDir sub(dir_ / name);
   sub.manifest_ = manifest_;
+  sub.lock_ = lock_;
   sub.prefix_ = prefix_ + std::string(name) + "/";
   return sub;
 }
 
-void OutputDir::finish_manifest() const {
-  if (manifest_) manifest_->finish();
+void OutputDir::finish_manifest(bool keep_run_id) const {
+  if (manifest_) manifest_->finish(keep_run_id);
 }
+
+std::string OutputDir::run_id() const { return manifest_ ? manifest_->run_id() : std::string(); }
 
 OutputDir::OutputDir(std::filesystem::path dir) : dir_(std::move(dir)) {
   std::error_code ec;

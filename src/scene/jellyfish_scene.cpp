@@ -461,6 +461,7 @@ jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::strin
     const std::string stem = o.string("files");
     if (stem.empty()) throw InputError(where + ": field 'files' is empty; give the path and stem, e.g. \"ib2d/jelly256\"");
     spec.structure = io::read_ib2d_structure(stem);
+    for (const std::filesystem::path& file : io::ib2d_files_present(stem)) spec.files.push_back(file.string());
   } else {
     jellyfish::HooverMillerSpec hm;
     hm.muscles_per_length = o.choice("model", {"hoover-miller", "hoover-miller-consistent"}) == "hoover-miller-consistent";

@@ -11,6 +11,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 namespace cli = jellysim::testing;
 using jellysim::InputError;
@@ -60,13 +65,13 @@ TEST(BatchPlan, ProductVariesTheLastKeyFastest) {
   ASSERT_TRUE(plan.duration);
   EXPECT_EQ(*plan.duration, 2.0);
   EXPECT_EQ(plan.keys, (std::vector<std::string>{"jellyfish.frequency", "jellyfish.gamma", "tank.solver"}));
-  ASSERT_EQ(plan.runs.size(), 6u);
-  EXPECT_EQ(*plan.runs[0][0], "0.5");
-  EXPECT_EQ(*plan.runs[0][1], "0.5");
-  EXPECT_EQ(*plan.runs[1][1], "0.6");
-  EXPECT_EQ(*plan.runs[2][0], "0.7");
-  EXPECT_EQ(*plan.runs[5][0], "0.9");
-  EXPECT_EQ(*plan.runs[5][2], "\"fft\"");
+  ASSERT_EQ(plan.run_count(), 6u);
+  EXPECT_EQ(*plan.run(0)[0], "0.5");
+  EXPECT_EQ(*plan.run(0)[1], "0.5");
+  EXPECT_EQ(*plan.run(1)[1], "0.6");
+  EXPECT_EQ(*plan.run(2)[0], "0.7");
+  EXPECT_EQ(*plan.run(5)[0], "0.9");
+  EXPECT_EQ(*plan.run(5)[2], "\"fft\"");
 }
 
 // [[runs]]: one run per table, the columns in order of first appearance, absent keys left to the scene.
@@ -77,10 +82,10 @@ TEST(BatchPlan, RunsListTakesEachTableAsARun) {
       "p.toml");
   EXPECT_EQ(plan.shared, std::vector<std::string>{"output.vtk=false"});
   EXPECT_EQ(plan.keys, (std::vector<std::string>{"tank.cells", "jellyfish.frequency"}));
-  ASSERT_EQ(plan.runs.size(), 2u);
-  EXPECT_EQ(*plan.runs[0][0], "[24, 32]");
-  EXPECT_FALSE(plan.runs[0][1].has_value());
-  EXPECT_EQ(*plan.runs[1][1], "0.9");
+  ASSERT_EQ(plan.run_count(), 2u);
+  EXPECT_EQ(*plan.run(0)[0], "[24, 32]");
+  EXPECT_FALSE(plan.run(0)[1].has_value());
+  EXPECT_EQ(*plan.run(1)[1], "0.9");
 }
 
 TEST(BatchPlan, MistakesNameTheFileAndTheField) {
@@ -208,5 +213,118 @@ TEST(BatchCli, AKilledBatchResumesOnlyTheMissingRuns) {
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_NE(refused.output.find("notes.txt"), std::string::npos) << refused.output;
   EXPECT_TRUE(fs::exists(out / "batch.csv"));
+  fs::remove_all(dir);
+}
+
+namespace {
+
+/// A sparse file of `bytes` (ftruncate: no disk used).
+void sparse_file(const fs::path& file, off_t bytes) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::ftruncate(fd, bytes), 0);
+  ::close(fd);
+}
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+}  // namespace
+
+// Issue 35 item 9: a plan is read like a scene file (a regular file of at most 1 MiB, its size
+// checked before reading), so a 3 GB plan is refused at once; a product of 100 000 runs is
+// validated by its values, not by materialising every run, and its runs are made when asked.
+TEST(BatchPlan, AHugePlanIsRefusedAndALargeProductValidatedByItsValues) {
+  const fs::path dir = cli::fresh_scratch_dir("batch_huge_plan");
+  fs::create_directories(dir);
+  sparse_file(dir / "plan.toml", off_t{3} << 30);
+  const cli::CliResult r = cli::run_jellysim("batch " + (dir / "plan.toml").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("plan.toml' is 3221225472 bytes; at most 1048576"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+
+  // 10^5 runs; every value of every key is checked (here the last one of the third key is wrong).
+  std::string text = std::string(kQuick) + "[product]\n";
+  text += "\"jellyfish.frequency\" = [0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95]\n"
+          "\"jellyfish.gamma\" = [0.5, 0.51, 0.52, 0.53, 0.54, 0.55, 0.56, 0.57, 0.58, 0.59]\n"
+          "\"tank.density\" = [1000, 1001, 1002, 1003, 1004, 1005, 1006, 1007, 1008, 1009]\n"
+          "\"tank.viscosity\" = [1e-6, 2e-6, 3e-6, 4e-6, 5e-6, 6e-6, 7e-6, 8e-6, 9e-6, 1e-5]\n"
+          "\"jellyfish.position\" = [[0.12, 0.080], [0.12, 0.081], [0.12, 0.082], [0.12, 0.083], [0.12, 0.084], "
+          "[0.12, 0.085], [0.12, 0.086], [0.12, 0.087], [0.12, 0.088], [0.12, 0.089]]\n";
+  const jellysim::experiments::Batch batch(parse_batch_plan(text, dir / "plan.toml"), {}, dir / "out");
+  ASSERT_EQ(batch.size(), 100000u);
+  EXPECT_EQ(batch.config(99999).to_json()["jellyfish"]["frequency"], 0.95);
+  EXPECT_EQ(batch.config(12345).to_json()["tank"]["density"], 1003);
+  try {
+    const jellysim::experiments::Batch bad(parse_batch_plan(replace_all(text, "1e-5]", "-1]"), dir / "plan.toml"), {},
+                                           dir / "out");
+    ADD_FAILURE() << "a product with a value out of range was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tank.viscosity"), std::string::npos) << e.what();
+  }
+  // 1500 [[runs]]: each value checked once, in the first run that holds it.
+  std::string listed = kQuick;
+  for (int k = 0; k < 1500; ++k) listed += std::string("[[runs]]\n\"jellyfish.frequency\" = ") + (k % 2 ? "0.9\n" : "0.5\n");
+  EXPECT_EQ(jellysim::experiments::Batch(parse_batch_plan(listed, dir / "plan.toml"), {}, dir / "out").size(), 1500u);
+  try {
+    const jellysim::experiments::Batch bad(parse_batch_plan(listed + "[[runs]]\n\"jellyfish.frequency\" = 9.0\n",
+                                                            dir / "plan.toml"), {}, dir / "out");
+    ADD_FAILURE() << "a list of runs with a value out of range was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run 1500 (jellyfish.frequency=9)"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+// Issue 35 item 5: a resumed batch takes a run as finished only when its summary.json is a regular
+// file (never a pipe, a directory or a link) with every figure a number, and every file its
+// manifest lists is there; anything else is redone. A symbolic link for runs/ or a run's directory
+// is refused (exit 2): a batch writes only inside its --out.
+TEST(BatchCli, AResumeRedoesRunsWhoseFilesAreNotWhatTheRunWrote) {
+  const fs::path dir = cli::fresh_scratch_dir("batch_distrust");
+  const fs::path plan = write_plan(dir, replace_all(kQuick, "duration = 0.1", "duration = 0.05") +
+                                             "[product]\n\"jellyfish.frequency\" = [0.5, 0.7, 0.9]\n");
+  const fs::path out = dir / "out";
+  const std::string command = "batch " + plan.string() + " --threads 1 --out " + out.string();
+  ASSERT_EQ(cli::run_jellysim(command + " --quiet").exit_code, 0);
+  const std::string whole = cli::read_text_file(out / "batch.csv");
+  const auto expect_resumed = [&](const std::string& counts) {
+    const cli::CliResult r = cli::run_jellysim(command);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(counts), std::string::npos) << r.output;
+    EXPECT_EQ(cli::read_text_file(out / "batch.csv"), whole);
+  };
+  const auto edit_summary = [&](const std::string& run, const auto& edit) {
+    nlohmann::ordered_json summary = nlohmann::ordered_json::parse(cli::read_text_file(out / "runs" / run / "summary.json"));
+    edit(summary);
+    std::ofstream(out / "runs" / run / "summary.json") << summary.dump(2);
+  };
+  edit_summary("0000", [](auto& s) { s["distance_travelled"] = "abc"; });
+  edit_summary("0001", [](auto& s) { s.erase("frames"); });
+  fs::remove(out / "runs" / "0002" / "metrics.csv");
+  expect_resumed("3 run now, 0 resumed");
+
+  fs::remove(out / "runs" / "0000" / "summary.json");
+  ASSERT_EQ(::mkfifo((out / "runs" / "0000" / "summary.json").c_str(), 0644), 0);  // once hung the batch
+  fs::remove(out / "runs" / "0001" / "summary.json");
+  fs::create_directory(out / "runs" / "0001" / "summary.json");  // once exit 1 naming no file
+  expect_resumed("2 run now, 1 resumed");
+
+  fs::rename(out / "runs" / "0002", dir / "elsewhere");
+  fs::create_directory_symlink(dir / "elsewhere", out / "runs" / "0002");
+  cli::CliResult r = cli::run_jellysim(command);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'runs/0002' is a symbolic link"), std::string::npos) << r.output;
+  fs::remove(out / "runs" / "0002");
+  fs::rename(out / "runs", dir / "runs_elsewhere");
+  fs::create_directory_symlink(dir / "runs_elsewhere", out / "runs");
+  r = cli::run_jellysim(command);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'runs' is a symbolic link"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "runs_elsewhere" / "0000" / "summary.json"));  // nothing touched
   fs::remove_all(dir);
 }

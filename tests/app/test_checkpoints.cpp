@@ -13,7 +13,9 @@
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "../cli_runner.hpp"
 
@@ -144,6 +146,97 @@ TEST(Checkpoints, WhatCannotBeResumedIsAnInputError) {
   r = run_jellysim("simulate --checkpoint-every 0 --out " + dir.string());
   EXPECT_EQ(r.exit_code, 2);
   fs::remove_all(dir);
+}
+
+/// Starts `simulate ARGS --checkpoint-every 0.05 --out DIR` on the preview grid, long enough to be
+/// killed, and kills it (SIGKILL) once its first checkpoint is there.
+void killed_after_a_checkpoint(const fs::path& dir, const std::vector<std::string>& args) {
+  std::vector<std::string> all{"simulate", "--duration", "5", "--set", "output.pictures=false", "--set",
+                               "output.vtk=false", "--quiet", "--checkpoint-every", "0.05", "--out", dir.string()};
+  all.insert(all.end(), args.begin(), args.end());
+  const pid_t pid = spawn_jellysim(all);
+  ASSERT_GT(pid, 0);
+  const bool checkpointed = wait_for(dir / "checkpoint.jellysim", pid);
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(checkpointed) << "the run ended before its first checkpoint";
+}
+
+void expect_refused(const jellysim::testing::CliResult& r, const std::vector<std::string>& words) {
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const std::string& w : words) EXPECT_NE(r.output.find(w), std::string::npos) << w << " in: " << r.output;
+}
+
+// Issue 35 item 3: run E's checkpoint copied into run D's directory does not resume there (it
+// once continued D's frames with E's); item 9: a checkpoint is checked against the size its
+// configuration implies before its state is read (a sparse 3 GB file is refused at once).
+TEST(Checkpoints, ACheckpointResumesOnlyItsOwnRunAndItsSizeIsChecked) {
+  const fs::path d = fresh_scratch_dir("foreign_d"), e = fresh_scratch_dir("foreign_e");
+  killed_after_a_checkpoint(d, {"--set", "tank.cells=[48,96]"});
+  killed_after_a_checkpoint(e, {"--set", "tank.cells=[48,96]", "--set", "jellyfish.frequency=0.9"});
+  const std::string own = read_text_file(d / "checkpoint.jellysim");
+  fs::copy_file(e / "checkpoint.jellysim", d / "checkpoint.jellysim", fs::copy_options::overwrite_existing);
+  const std::string metrics = fs::exists(d / "metrics.csv") ? read_text_file(d / "metrics.csv") : "";
+  expect_refused(run_jellysim("simulate --resume " + d.string() + " --quiet"),
+                 {(d / "checkpoint.jellysim").string(), (d / "manifest.txt").string(), "another run"});
+  EXPECT_FALSE(fs::exists(d / "summary.json"));
+
+  std::ofstream(d / "checkpoint.jellysim", std::ios::binary) << own;  // its own, grown to 3 GB (sparse)
+  ASSERT_EQ(::truncate((d / "checkpoint.jellysim").c_str(), off_t{3} << 30), 0);
+  expect_refused(run_jellysim("simulate --resume " + d.string() + " --quiet"),
+                 {(d / "checkpoint.jellysim").string(), "bytes of state, more than this run's configuration"});
+  ASSERT_EQ(::truncate((d / "checkpoint.jellysim").c_str(), 0), 0);  // garbage of 3 GB
+  ASSERT_EQ(::truncate((d / "checkpoint.jellysim").c_str(), off_t{3} << 30), 0);
+  expect_refused(run_jellysim("simulate --resume " + d.string() + " --quiet"),
+                 {(d / "checkpoint.jellysim").string(), "not a whole jellysim checkpoint"});
+  fs::remove_all(d);
+  fs::remove_all(e);
+}
+
+// Issue 35 item 14: a resume whose IB2d .target file was deleted names that file (it once said the
+// checkpoint's entries did not match).
+TEST(Checkpoints, AResumeWhoseSceneFileIsGoneNamesIt) {
+  const fs::path dir = fresh_scratch_dir("resume_target");
+  fs::create_directories(dir);
+  std::ofstream(dir / "s.vertex") << "3\n1.0 1.0\n1.2 1.0\n1.4 1.0\n";
+  std::ofstream(dir / "s.spring") << "2\n1 2 10 0.2\n2 3 10 0.2\n";
+  std::ofstream(dir / "s.target") << "1\n1 100\n";
+  std::ofstream(dir / "scene.toml") << "scene = \"jellyfish\"\n[tank]\nwidth = 3.0\nheight = 3.0\ncells = [24, 24]\n"
+                                       "[jellyfish]\nenabled = false\n[[objects]]\ntype = \"ib2d\"\nfiles = \""
+                                    << (dir / "s").string() << "\"\n[[objects.schedules]]\nsprings = [1, 1]\n"
+                                       "law = \"abs-cos\"\n";
+  killed_after_a_checkpoint(dir / "out", {(dir / "scene.toml").string()});
+  fs::remove(dir / "s.target");
+  expect_refused(run_jellysim("simulate --resume " + (dir / "out").string() + " --quiet"),
+                 {"'" + (dir / "s.target").string() + "', which is missing"});
+  fs::remove_all(dir);
+}
+
+// Issue 35 item 4: two runs into one directory at once (`simulate` or `batch`): the second is
+// refused, naming the directory and the first's pid; the lock a killed run left is not in the way.
+TEST(Checkpoints, ADirectoryInUseIsRefusedToASecondRun) {
+  const fs::path dir = fresh_scratch_dir("locked");
+  const pid_t pid = spawn_jellysim({"simulate", "--duration", "5", "--set", "output.pictures=false", "--set",
+                                    "output.vtk=false", "--quiet", "--set", "tank.cells=[48,96]", "--out", dir.string()});
+  ASSERT_GT(pid, 0);
+  const bool started = wait_for(dir / "manifest.txt", pid);
+  const std::string holder = "in use by another jellysim run (pid " + std::to_string(pid) + ")";
+  const std::string quick = std::string(" --duration 0.05 --set output.pictures=false --set output.vtk=false --quiet") +
+                            " --set tank.cells=[48,96] --out " + dir.string();
+  const jellysim::testing::CliResult second = run_jellysim("simulate" + quick);
+  std::ofstream(dir.string() + ".toml") << "[product]\n\"jellyfish.frequency\" = [0.5]\n";
+  const jellysim::testing::CliResult batch = run_jellysim("batch " + dir.string() + ".toml --quiet --out " + dir.string());
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(started);
+  expect_refused(second, {"--out '" + dir.string() + "'", holder});
+  expect_refused(batch, {"--out '" + dir.string() + "'", holder});
+  ASSERT_TRUE(fs::exists(dir / ".jellysim.lock"));  // the killed run's: no one holds it
+  const jellysim::testing::CliResult after = run_jellysim("simulate" + quick);
+  EXPECT_EQ(after.exit_code, 0) << after.output;
+  EXPECT_FALSE(fs::exists(dir / ".jellysim.lock"));  // released with the run
+  fs::remove_all(dir);
+  fs::remove(dir.string() + ".toml");
 }
 
 }  // namespace

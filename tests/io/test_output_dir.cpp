@@ -74,7 +74,8 @@ TEST(OutputDir, ALaterRunReplacesTheEarlierRunsOutputsCompletely) {
   second.write_text("summary.json", "{\"frames\": 1}");
   second.finish_manifest();
   int files = 0;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    files += e.is_regular_file() && e.path().filename() != kLockName ? 1 : 0;  // the lock: while `second` lives
   EXPECT_EQ(files, 3);  // manifest, summary, one frame
   fs::remove_all(dir);
 }
@@ -116,6 +117,50 @@ TEST(OutputDir, AcceptsANewOrEmptyDirectory) {
   EXPECT_NO_THROW(OutputDir::for_run(fresh("new") / "nested", "test"));
   fs::remove_all(dir);
   fs::remove_all(fresh("new"));
+}
+
+// Issue 35 item 4: a run holds its directory for its life; a second run there is refused, naming the
+// holder's pid, and the lock goes with the run.
+TEST(OutputDir, ADirectoryIsLockedWhileItsRunLives) {
+  const fs::path dir = fresh("locked");
+  {
+    const OutputDir first = OutputDir::for_run(dir, "test");
+    const OutputDir frames = first.subdirectory("frames");
+    try {
+      OutputDir::for_run(dir, "test");
+      ADD_FAILURE() << "a second run into a locked directory was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("in use by another jellysim run (pid " + std::to_string(::getpid()) + ")"),
+                std::string::npos) << e.what();
+    }
+    EXPECT_THROW(OutputDir::for_resumed_run(dir, "test"), InputError);
+  }
+  EXPECT_FALSE(fs::exists(dir / kLockName));
+  EXPECT_NO_THROW(OutputDir::for_run(dir, "test"));
+  fs::remove_all(dir);
+}
+
+// Issue 35 item 3: the run's id is in its manifest while it goes on, kept by a resumed run, and gone
+// from a whole run's manifest (the same bytes every time).
+TEST(OutputDir, TheRunIdIsInTheManifestWhileTheRunCanBeResumed) {
+  const fs::path dir = fresh("run_id");
+  std::string id;
+  {
+    const OutputDir out = OutputDir::for_run(dir, "test");
+    id = out.run_id();
+    EXPECT_EQ(id.size(), 32u);
+    EXPECT_EQ(manifest_run_id(dir), id);
+    out.finish_manifest(true);
+    EXPECT_EQ(manifest_run_id(dir), id);
+  }
+  {
+    const OutputDir resumed = OutputDir::for_resumed_run(dir, "test");
+    EXPECT_EQ(resumed.run_id(), id);
+    resumed.finish_manifest();
+    EXPECT_EQ(manifest_run_id(dir), "");
+  }
+  EXPECT_NE(OutputDir::for_run(dir, "test").run_id(), id);
+  fs::remove_all(dir);
 }
 
 TEST(SafeFiles, TemporariesAreNewUnpredictableRegularFiles) {

@@ -5,9 +5,11 @@
 // backend is run_batch_threaded, the MPI backend lives in the app (src/app/batch_mpi.cpp) and uses
 // the same pieces, so both write the same bytes.
 #include "jellysim/config/config.hpp"
+#include "jellysim/io/output.hpp"
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,8 +23,15 @@ struct BatchPlan {
   std::optional<double> duration;      ///< seconds, for every run
   std::vector<std::string> shared;     ///< [set]: key=value assignments for every run, plan order
   std::vector<std::string> keys;       ///< the overridden keys, plan order (batch.csv's columns)
-  /// Per run, per key: the value as TOML text (e.g. 0.5, "fft", [24, 32]); none: the scene's value.
-  std::vector<std::vector<std::optional<std::string>>> runs;
+  /// [product]: per key, its values as TOML text (e.g. 0.5, "fft", [24, 32]); the runs are not
+  /// stored (a product of 100 000 runs is a few lists): run(k) makes run k's. Empty for [[runs]].
+  std::vector<std::vector<std::string>> product;
+  /// [[runs]]: per run, per key: the value as TOML text; none: the scene's value.
+  std::vector<std::vector<std::optional<std::string>>> listed;
+
+  std::size_t run_count() const;
+  /// Run k's value per key (none: the scene's value); [product]: the last key varying fastest.
+  std::vector<std::optional<std::string>> run(std::size_t k) const;
 };
 
 /// Parses a plan (`text` read from `file`): top-level `scene`, `duration`, `[set]`, and either
@@ -45,20 +54,28 @@ struct BatchRow {
 /// A batch: every run's configuration resolved and validated before anything is written.
 class Batch {
  public:
+  /// Plans of up to this many runs have every run validated before anything runs.
+  static constexpr std::size_t kValidateEveryRun = 1000;
+
   /// Resolves each run: the built-in jellyfish scene, the plan's scene file, duration, [set], the
-  /// command line's `sets`, then the run's overrides; each is validated as `simulate` would.
-  /// Throws InputError naming the plan file, the run and the field.
+  /// command line's `sets`, then the run's overrides; each is validated as `simulate` would (a
+  /// plan of more than kValidateEveryRun runs: runs that together hold every value of every key,
+  /// see runs_to_validate). Throws InputError naming the plan file, the run and the field.
   Batch(BatchPlan plan, const std::vector<std::string>& sets, std::filesystem::path out);
 
-  std::size_t size() const { return configs_.size(); }
+  std::size_t size() const { return plan_.run_count(); }
+  /// Run k's resolved configuration (made when asked: a batch keeps only the plan).
+  io::Config config(std::size_t k) const;
   const BatchPlan& plan() const { return plan_; }
   const std::filesystem::path& out() const { return out_; }
   /// DIR/runs/NNNN (four digits at least).
   std::filesystem::path run_dir(std::size_t k) const;
 
-  /// Checks DIR (new, or holding only an earlier batch's files: else InputError, nothing touched),
+  /// Locks DIR for the batch's life (another batch or run there: InputError naming its pid), checks
+  /// it (new, or holding only an earlier batch's files, no symbolic link: else InputError, nothing touched),
   /// clears the directories of unfinished runs and returns the runs still to do, in order. The
-  /// rows of finished runs (summary.json complete, same configuration) are kept for tables().
+  /// rows of finished runs (summary.json a regular file, complete, every figure a number, the same
+  /// configuration; every file of the run's manifest there) are kept for tables().
   std::vector<std::size_t> prepare_directory();
   /// One row per run before any runs: the rows of the runs prepare_directory() found finished,
   /// the others marked unfinished (interrupted) until a row for them comes in.
@@ -77,10 +94,13 @@ class Batch {
   std::optional<BatchRow> finished_row(std::size_t k) const;
   std::vector<std::string> row_cells(std::size_t k, const nlohmann::ordered_json& summary, bool failed) const;
 
+  std::vector<std::size_t> runs_to_validate() const;
+
   BatchPlan plan_;
   std::filesystem::path out_;
-  std::vector<io::Config> configs_;
+  io::Config base_;  ///< every run's configuration before its own overrides
   std::vector<std::optional<BatchRow>> resumed_;
+  std::shared_ptr<io::DirectoryLock> lock_;  ///< DIR's, from prepare_directory() on
 };
 
 /// batch.csv's columns: run, the plan's keys, then the figures and `failed`.

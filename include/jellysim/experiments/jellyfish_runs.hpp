@@ -43,10 +43,13 @@ struct SwimRecording {
 
 /// Checkpoints of a swim (issue 23): io/checkpoint.hpp's file, written at the first frame at or
 /// after every `how.every_s` simulated seconds, holding the simulation's state and the recording
-/// so far; and the state a resumed run continues from.
+/// so far; and the checkpoint a resumed run continues from.
 struct Checkpointing {
   io::Checkpoint how;  ///< the run's configuration as given (each checkpoint carries it); .state unused
-  std::optional<core::StateArchive::Entries> resume;  ///< the checkpoint's state, when resuming
+  /// Resuming: `how` is the checkpoint io::read_checkpoint read, whose state run_swim reads once it
+  /// knows how large this configuration's state can be, after checking that the files the scene
+  /// read then (how.inputs) are the ones it reads now.
+  bool resume = false;
 };
 
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/). With

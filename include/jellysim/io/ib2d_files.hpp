@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "jellysim/elastic/ib2d_structure.hpp"
 
@@ -33,6 +34,9 @@ inline constexpr std::size_t kMaxIb2dRows = 2'000'000;
 /// Any violation throws InputError naming the file and, where one applies, the line (1-based),
 /// the column and what was expected.
 elastic::Ib2dStructure read_ib2d_structure(const std::filesystem::path& stem);
+/// The files of the structure at `stem` that are there (those read_ib2d_structure reads), in the
+/// order .vertex, .spring, .d_spring, .beam, .nonInv_beam, .target.
+std::vector<std::filesystem::path> ib2d_files_present(const std::filesystem::path& stem);
 
 /// Writes STEM.vertex and each other file whose list is non-empty, each atomically
 /// (write_file_atomically), numbers as the shortest text that reads back to the same double, so

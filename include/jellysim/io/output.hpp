@@ -3,6 +3,7 @@
 // never sees a half-written file and a failed run leaves no corrupt output behind.
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -29,6 +30,20 @@ void sync_file(const std::filesystem::path& path, const std::filesystem::path& s
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
 /// The operating system's text for an errno value (thread-safe).
 std::string os_reason(int error_number);
+/// The whole content of `path`, which must be a regular file of at most `max_bytes` (checked with
+/// fstat on the opened file, before reading: never a named pipe, a device or a directory, which
+/// are not waited on); with `follow_links` false a symbolic link is refused too (O_NOFOLLOW).
+/// Throws InputError naming the file and what it is.
+std::string read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes, bool follow_links);
+
+/// The advisory lock of a results directory (flock on DIR/.jellysim.lock) that a run holds for its
+/// life, so that two runs never write into one directory at once; removed when released.
+class DirectoryLock;
+/// Creates `dir` if needed and locks it; a directory another process holds is an InputError naming
+/// `option`, the directory and the holder's pid (as its lock file says).
+std::shared_ptr<DirectoryLock> lock_directory(const std::filesystem::path& dir, std::string_view option);
+/// The lock file's name in a results directory (not a result: never in a manifest).
+inline constexpr std::string_view kLockName = ".jellysim.lock";
 
 class OutputDir {
  public:
@@ -40,15 +55,23 @@ class OutputDir {
   /// removed first, so the directory never mixes two runs; anything else makes it an InputError
   /// (exit 2) and nothing is touched. Every file this run writes, here or in subdirectory()s, is
   /// listed in manifest.txt as it is written (sorted when the run ends: finish_manifest()).
+  /// The directory is locked (lock_directory) for as long as a copy of the result lives: a
+  /// directory another run is writing is an InputError naming it and that run's pid.
   static OutputDir for_run(std::filesystem::path dir, std::string_view command);
   /// The results directory of a run that continues there (`simulate --resume`): the earlier run's
   /// outputs stay and remain in the manifest, temporaries it left are removed; a directory
-  /// without a manifest, or holding other files, is an InputError.
+  /// without a manifest, or holding other files, is an InputError. Locked as for_run's.
   static OutputDir for_resumed_run(std::filesystem::path dir, std::string_view command);
   /// The directory `name` inside this one, created if needed; its files join this run's manifest.
   OutputDir subdirectory(std::string_view name) const;
   /// Rewrites manifest.txt in sorted order (the order files were written in may vary with threads).
-  void finish_manifest() const;
+  /// The run's id (run_id()) stays in it only with `keep_run_id` (a run that can still be resumed),
+  /// so that a whole run's manifest is the same bytes every time.
+  void finish_manifest(bool keep_run_id = false) const;
+  /// The run's identity: random, in the manifest's first line while the run goes on, kept by a
+  /// resumed run; a checkpoint carries it, so that it resumes only the run (and directory) it is of.
+  /// Empty for a plain directory.
+  std::string run_id() const;
 
   const std::filesystem::path& path() const { return dir_; }
   std::filesystem::path file(std::string_view name) const { return dir_ / name; }
@@ -70,11 +93,14 @@ class OutputDir {
  private:
   std::filesystem::path dir_;
   std::shared_ptr<RunManifest> manifest_;  ///< null for a plain directory
+  std::shared_ptr<DirectoryLock> lock_;    ///< held while any copy lives (null for a plain directory)
   std::string prefix_;                     ///< this directory relative to the manifest's ("" or "frames/")
 };
 
 /// The manifest's file name in a run's results directory.
 inline constexpr std::string_view kManifestName = "manifest.txt";
+/// The run id in DIR/manifest.txt's first line ("" when there is none: a whole run's, or no manifest).
+std::string manifest_run_id(const std::filesystem::path& dir);
 
 /// Writes `name` atomically through a writer that needs a path (image and VTK libraries):
 /// writer(temporary path), then the temporary is renamed into place.

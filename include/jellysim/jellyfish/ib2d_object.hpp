@@ -44,6 +44,7 @@ struct Ib2dObjectSpec {
   elastic::Ib2dStructure structure;
   Vec2 offset_m{};    ///< added to every vertex
   std::vector<SpringSchedule> schedules;
+  std::vector<std::string> files;  ///< the IB2d files it was read from (none for a generated model)
 };
 
 /// Checks indices of the schedules against the structure; throws std::invalid_argument naming them.
