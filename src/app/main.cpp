@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -157,7 +158,7 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   auto run = e.prepare(ctx);
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
-  js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
+  js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM/SIGHUP stops at a step boundary
   const js::experiments::Outcome outcome = run(out);
   out.finish_manifest();
   const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
@@ -420,6 +421,9 @@ int run_batch(const BatchCommand& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
+  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", JELLYSIM_VERSION);
