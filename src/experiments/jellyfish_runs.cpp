@@ -317,7 +317,10 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
       },
       progress, static_cast<std::int64_t>(frame));
   if (files) files->flush();  // every frame on disk (or a write's error) before the run's own files
-  if (every > 0 && rec.stats.failure.empty()) out->remove(io::kCheckpointName);  // the run is whole
+  if (every > 0 && rec.stats.failure.empty()) {  // the run is whole
+    if (checkpoints->keep_when_whole) write_checkpoint(sim);
+    else out->remove(io::kCheckpointName);
+  }
   const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
   if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
   for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));

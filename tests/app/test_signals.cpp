@@ -108,32 +108,47 @@ int wait_exit_code(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
 }
 
-// Ctrl-C in a terminal signals the job's whole process group. While the video is being encoded
-// that reached ffmpeg too, which died, and the run failed (exit 1, no summary, no video, no .glb).
-// Now ffmpeg has a group of its own; jellysim stops rendering and finishes the video with the
-// frames so far (issue 35, item 1). An ffmpeg in front of the real one waits, once started, until
-// the test has sent Ctrl-C: the frames (320 x 240, larger than a pipe holds) cannot all be sent
-// before, so the run is always interrupted while rendering.
-TEST(Signals, CtrlCWhileEncodingTheVideoKeepsTheVideoAndTheSummary) {
+/// Starts `jellysim run ARGS` as a terminal job, with an ffmpeg in front of the real one that, once
+/// started, waits until Ctrl-C has been sent to the job's whole process group; returns how the
+/// job exited. The frames (320 x 240: the caller sets the size) are larger than a pipe holds, so
+/// they cannot all be sent before: the run is always interrupted while rendering.
+int ctrl_c_while_encoding(const fs::path& dir, const std::vector<std::string>& args) {
   const std::string real_ffmpeg = jellysim::render::find_ffmpeg();
-  if (real_ffmpeg.empty()) GTEST_SKIP() << "no ffmpeg";
-  const fs::path dir = jellysim::testing::fresh_scratch_dir("ctrl_c_video");
   fs::create_directories(dir / "bin");
   const fs::path started = dir / "ffmpeg_started", go = dir / "go";
+  fs::remove(started);
+  fs::remove(go);
   std::ofstream(dir / "bin" / "ffmpeg") << "#!/bin/sh\n: > '" << started.string() << "'\nwhile [ ! -e '" << go.string()
                                          << "' ]; do sleep 0.01; done\nexec '" << real_ffmpeg << "' \"$@\"\n";
   fs::permissions(dir / "bin" / "ffmpeg", fs::perms::owner_all);
-  const pid_t pid = spawn_job({"run", "--quiet", "--duration", "0.2", "--set", "tank.cells=[96,192]", "--set",
-                               "render.width=320", "--set", "render.height=240", "--set", "render.png_frames=false",
-                               "--out", (dir / "out").string()},
-                              (dir / "bin").string());
-  ASSERT_GT(pid, 0);
+  std::vector<std::string> all{"run"};
+  all.insert(all.end(), args.begin(), args.end());
+  const pid_t pid = spawn_job(all, (dir / "bin").string());
+  if (pid <= 0) return -1;
   const bool encoding = wait_for(started);
   ::kill(-pid, SIGINT);  // the terminal's Ctrl-C: the whole group
   std::ofstream(go) << "";
   const int exit_code = wait_exit_code(pid);
-  ASSERT_TRUE(encoding) << "the run never started ffmpeg";
-  EXPECT_EQ(exit_code, 130);
+  return encoding ? exit_code : -2;
+}
+
+const std::vector<std::string> kVideoRun{"--quiet", "--duration", "0.2", "--set", "tank.cells=[96,192]", "--set",
+                                         "render.width=320", "--set", "render.height=240", "--set",
+                                         "render.png_frames=false"};
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+// Ctrl-C in a terminal signals the job's whole process group. While the video was being encoded
+// that reached ffmpeg too, which died, and the run failed (exit 1, no summary, no video, no .glb).
+// Now ffmpeg has a group of its own; jellysim stops rendering and finishes the video with the
+// frames so far (issue 35, item 1).
+TEST(Signals, CtrlCWhileEncodingTheVideoKeepsTheVideoAndTheSummary) {
+  if (jellysim::render::find_ffmpeg().empty()) GTEST_SKIP() << "no ffmpeg";
+  const fs::path dir = jellysim::testing::fresh_scratch_dir("ctrl_c_video");
+  EXPECT_EQ(ctrl_c_while_encoding(dir, with(kVideoRun, {"--out", (dir / "out").string()})), 130);
   const std::string summary = jellysim::testing::read_text_file(dir / "out" / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("interrupted by SIGINT while rendering"), std::string::npos) << summary;
@@ -141,6 +156,28 @@ TEST(Signals, CtrlCWhileEncodingTheVideoKeepsTheVideoAndTheSummary) {
   EXPECT_GT(fs::file_size(dir / "out" / "jellyfish.mp4"), 0u);
   for (const auto& e : fs::recursive_directory_iterator(dir / "out"))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+// `jellysim run --checkpoint-every`: the checkpoint of the simulation's end stays until the
+// animation is written, so a run stopped while rendering resumes (--resume renders again) to
+// the outputs of the uninterrupted run, byte for byte (issue 35, item 15).
+TEST(Signals, ARunStoppedWhileRenderingResumesToTheUninterruptedOutputs) {
+  if (jellysim::render::find_ffmpeg().empty()) GTEST_SKIP() << "no ffmpeg";
+  const fs::path dir = jellysim::testing::fresh_scratch_dir("run_resume");
+  const fs::path out = dir / "out", reference = dir / "reference";
+  ASSERT_EQ(ctrl_c_while_encoding(dir, with(kVideoRun, {"--checkpoint-every", "0.1", "--out", out.string()})), 130);
+  ASSERT_TRUE(fs::exists(out / "checkpoint.jellysim"));
+  const auto resumed = jellysim::testing::run_jellysim("run --quiet --resume " + out.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  std::string args;
+  for (const std::string& a : kVideoRun) args += " '" + a + "'";
+  const auto whole = jellysim::testing::run_jellysim("run" + args + " --out " + reference.string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  EXPECT_FALSE(fs::exists(out / "checkpoint.jellysim"));
+  EXPECT_NE(jellysim::testing::read_text_file(out / "summary.json").find("\"status\": \"ok\""), std::string::npos);
+  for (const char* f : {"jellyfish.mp4", "jellyfish.glb", "metrics.csv", "slices.csv", "manifest.txt"})
+    EXPECT_EQ(jellysim::testing::read_text_file(out / f), jellysim::testing::read_text_file(reference / f)) << f;
   fs::remove_all(dir);
 }
 
