@@ -313,6 +313,7 @@ PendingFile::~PendingFile() {
 }
 
 void PendingFile::commit() {
+  if (file_.fd < 0) throw std::logic_error("PendingFile::commit: already committed");
   const fs::path target = dir_.dir_ / name_;
   // Still our file under the temporary's name? (A thing planted there is neither followed nor
   // moved into place.)
