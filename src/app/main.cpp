@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -113,6 +114,30 @@ void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_ou
   add_memory_limit_option(cmd);
 }
 
+/// `--checkpoint-every S` / `--resume DIR` of `simulate` and `run`.
+struct CheckpointOptions {
+  double every = 0.0;
+  std::string resume_dir;
+};
+
+void add_checkpoint_options(CLI::App& cmd, CheckpointOptions& c, const std::string& more) {
+  auto* every = cmd.add_option("--checkpoint-every", c.every,
+                               "Write the whole state to OUT/checkpoint.jellysim at the first frame after every S "
+                               "simulated seconds, (0, 1e9]; a killed run continues with --resume OUT (removed when "
+                               "the run completes)" + more)
+                    ->type_name("S")
+                    ->check(CLI::Range(1e-9, 1e9));
+  cmd.add_option("--resume", c.resume_dir,
+                 "Continue the run whose checkpoint is in DIR, into DIR, as it was configured (no scene, --set, "
+                 "--duration or --out): the outputs are those of the uninterrupted run, byte for byte")
+      ->type_name("DIR")
+      ->excludes(every)
+      ->excludes("scene")
+      ->excludes("--set")
+      ->excludes("--duration")
+      ->excludes("--out");
+}
+
 /// Terminal progress: simulated time, steps and ETA, redrawn at most five times a second.
 js::sim::ProgressCallback make_progress(bool enabled) {
   if (!enabled || !::isatty(STDOUT_FILENO)) return {};
@@ -157,12 +182,13 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   auto run = e.prepare(ctx);
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
-  js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
+  js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM/SIGHUP stops at a step boundary
   const js::experiments::Outcome outcome = run(out);
   const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
   out.finish_manifest(resumable);  // a resumable run keeps its id, which its checkpoint carries
   const std::string resume_hint =
-      resumable ? "  (continue it with: jellysim simulate --resume " + out.path().string() + ")\n" : "";
+      resumable ? "  (continue it with: jellysim " + o.checkpoints->how.command + " --resume " + out.path().string() + ")\n"
+                : "";
   if (const int signal = js::core::interrupt_signal(); signal != 0 && !outcome.failure.empty()) {
     std::cerr << "jellysim: " << outcome.failure << "; results so far are in " << out.path().string() << "\n"
               << resume_hint;
@@ -177,12 +203,20 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   return 0;
 }
 
-/// `jellysim simulate --checkpoint-every S`: the configuration as it was given (scene text, --set,
-/// --duration) travels in each checkpoint, so that --resume resolves it again exactly.
-int run_checkpointed_simulation(const std::string& scene_path, RunOptions o, double every_s) {
+/// The experiment a checkpointed command runs: `simulate` the jellyfish scene, `run` its animation.
+const js::experiments::Experiment& checkpointed_experiment(const std::string& command) {
+  return js::experiments::find_experiment(command == "run" ? "animation" : "jellyfish");
+}
+
+/// `jellysim simulate|run --checkpoint-every S`: the configuration as it was given (scene text,
+/// --set, --duration) travels in each checkpoint, so that --resume resolves it again exactly.
+/// `run` keeps the checkpoint of the simulation's end until its animation is written.
+int run_checkpointed_simulation(const std::string& command, const std::string& scene_path, RunOptions o,
+                                double every_s) {
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
+  checkpoints->keep_when_whole = command == "run";
   js::io::Checkpoint& how = checkpoints->how;
-  how.command = "simulate";
+  how.command = command;
   how.every_s = every_s;
   how.sets = o.sets;
   if (o.duration) how.duration = js::io::format_double(*o.duration);
@@ -196,14 +230,16 @@ int run_checkpointed_simulation(const std::string& scene_path, RunOptions o, dou
                            "only jellyfish simulations write checkpoints");
   }
   o.checkpoints = std::move(checkpoints);
-  return run_experiment(js::experiments::find_experiment("jellyfish"), scene, o);
+  return run_experiment(checkpointed_experiment(command), scene, o);
 }
 
-/// `jellysim simulate --resume DIR`: continues the run whose checkpoint is in DIR, into DIR.
-int resume_simulation(const std::string& dir, bool quiet) {
+/// `jellysim simulate|run --resume DIR`: continues the run whose checkpoint is in DIR, into DIR
+/// (`run`: the simulation from its checkpoint, then the whole animation, as the run would have).
+int resume_simulation(const std::string& command, const std::string& dir, bool quiet) {
   js::io::Checkpoint c = js::io::read_checkpoint(dir);
-  if (c.command != "simulate")
-    throw js::InputError("--resume '" + dir + "': the checkpoint is of `jellysim " + c.command + "`, not `simulate`");
+  if (c.command != command)
+    throw js::InputError("--resume '" + dir + "': the checkpoint is of `jellysim " + c.command + "`, not `" + command +
+                         "`");
   RunOptions o;
   o.out = dir;
   o.quiet = quiet;
@@ -215,8 +251,9 @@ int resume_simulation(const std::string& dir, bool quiet) {
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
   checkpoints->how = std::move(c);
   checkpoints->resume = true;
+  checkpoints->keep_when_whole = command == "run";
   o.checkpoints = std::move(checkpoints);
-  return run_experiment(js::experiments::find_experiment("jellyfish"), scene, o);
+  return run_experiment(checkpointed_experiment(command), scene, o);
 }
 
 int run_scene(const std::string& scene_path, const RunOptions& o, const std::string& default_scene) {
@@ -420,6 +457,9 @@ int run_batch(const BatchCommand& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
+  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", JELLYSIM_VERSION);
@@ -430,6 +470,10 @@ int main(int argc, char** argv) {
       "outputs; for a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json");
   run->add_option("scene", scene_path, "Scene file (TOML); omitted: the built-in default scene")->check(CLI::ExistingFile);
   add_run_options(*run, run_opts, "out", "--set jellyfish.frequency=0.9 --set render.width=320");
+  CheckpointOptions run_checkpoints;
+  add_checkpoint_options(*run, run_checkpoints,
+                         " (jellyfish scenes; kept until the animation is written too: a run stopped while rendering "
+                         "renders again on --resume)");
 
   RunOptions sim_opts;
   std::string sim_scene_path;
@@ -439,23 +483,8 @@ int main(int argc, char** argv) {
   simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
   add_run_options(*simulate, sim_opts, "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false");
-  double checkpoint_every = 0.0;
-  std::string resume_dir;
-  auto* checkpoint_option =
-      simulate->add_option("--checkpoint-every", checkpoint_every,
-                           "Write the whole state to OUT/checkpoint.jellysim at the first frame after every S simulated "
-                           "seconds, (0, 1e9]; a killed run continues with --resume OUT (removed when the run completes)")
-          ->type_name("S")
-          ->check(CLI::Range(1e-9, 1e9));
-  simulate->add_option("--resume", resume_dir,
-                       "Continue the run whose checkpoint is in DIR, into DIR, as it was configured (no scene, --set, "
-                       "--duration or --out): the outputs are those of the uninterrupted run, byte for byte")
-      ->type_name("DIR")
-      ->excludes(checkpoint_option)
-      ->excludes("scene")
-      ->excludes("--set")
-      ->excludes("--duration")
-      ->excludes("--out");
+  CheckpointOptions sim_checkpoints;
+  add_checkpoint_options(*simulate, sim_checkpoints, "");
 
   RunOptions sweep_opts;
   std::string sweep_scene_path;
@@ -538,10 +567,15 @@ int main(int argc, char** argv) {
   try {
     for (const CLI::App* command : app.get_subcommands())
       if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
-    if (run->parsed()) return run_scene(scene_path, run_opts, "animation");
+    if (run->parsed()) {
+      if (!run_checkpoints.resume_dir.empty()) return resume_simulation("run", run_checkpoints.resume_dir, run_opts.quiet);
+      if (run_checkpoints.every > 0) return run_checkpointed_simulation("run", scene_path, run_opts, run_checkpoints.every);
+      return run_scene(scene_path, run_opts, "animation");
+    }
     if (simulate->parsed()) {
-      if (!resume_dir.empty()) return resume_simulation(resume_dir, sim_opts.quiet);
-      if (checkpoint_every > 0) return run_checkpointed_simulation(sim_scene_path, sim_opts, checkpoint_every);
+      if (!sim_checkpoints.resume_dir.empty()) return resume_simulation("simulate", sim_checkpoints.resume_dir, sim_opts.quiet);
+      if (sim_checkpoints.every > 0)
+        return run_checkpointed_simulation("simulate", sim_scene_path, sim_opts, sim_checkpoints.every);
       return run_scene(sim_scene_path, sim_opts, "jellyfish");
     }
     if (view->parsed()) return run_view(view_cmd);

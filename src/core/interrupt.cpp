@@ -23,8 +23,11 @@ void install_interrupt_handlers() {
   action.sa_handler = on_interrupt;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;  // a write in progress completes; the loops poll the flag
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  // SIGHUP too: a closed terminal or SSH session ends the run as Ctrl-C does, with its summary.
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+  // A closed standard output (`jellysim batch ... | head -1`) fails the write (EPIPE: the stream
+  // stops printing) instead of killing the process mid-run.
+  ::signal(SIGPIPE, SIG_IGN);
 }
 
 int interrupt_signal() { return g_signal.load(std::memory_order_relaxed); }
@@ -32,6 +35,7 @@ int interrupt_signal() { return g_signal.load(std::memory_order_relaxed); }
 std::string signal_name(int signal_number) {
   if (signal_number == SIGINT) return "SIGINT";
   if (signal_number == SIGTERM) return "SIGTERM";
+  if (signal_number == SIGHUP) return "SIGHUP";
   return "signal " + std::to_string(signal_number);
 }
 

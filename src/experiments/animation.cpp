@@ -24,7 +24,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
   pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
   options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
-    const SwimRecording rec = run_swim(settings, options, &out, ctx.progress);
+    // With checkpoints, the simulation's end stays checkpointed until the animation is whole.
+    const SwimRecording rec = run_swim(settings, options, &out, ctx.progress, ctx.checkpoints.get());
     write_metrics_csv(out, rec.metrics);
     write_slices_csv(out, rec.frames);
     write_scene_extras(out, rec);
@@ -53,6 +54,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
       failure = "interrupted by " + core::signal_name(core::interrupt_signal()) + " while rendering, after " +
                 std::to_string(anim.frames) + " of " + std::to_string(rec.frames.size()) + " frames";
     write_summary(out, "run", ctx.config, figures, failure);
+    if (ctx.checkpoints && failure.empty()) out.remove(io::kCheckpointName);  // whole: nothing to resume
     return Outcome{failure};
   };
 }

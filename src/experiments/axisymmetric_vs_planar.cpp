@@ -15,7 +15,6 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::write_via_temporary;
 
 /// The two runs, by their tank.geometry values.
 struct GeometryRun {
@@ -151,9 +150,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_axisymmetric_vs_planar(cons
     po.arrows = false;
     po.colour_range_max = 10.0;  // 1/s: the same scale in both panels
     if (!panels.empty())
-      write_via_temporary(out, "wakes.png", [&](const auto& path) {
-        render::write_field_panels_png(panels, static_cast<int>(panels.size()), po, path);
-      });
+      out.write_text("wakes.png", render::field_panels_png(panels, static_cast<int>(panels.size()), po));
     write_summary(out, "experiment axisymmetric-vs-planar", ctx.config, fig, failure);
     return Outcome{failure};
   };

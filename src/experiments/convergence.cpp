@@ -18,7 +18,6 @@ namespace jellysim::experiments {
 namespace {
 
 using io::format_number;
-using io::write_via_temporary;
 
 struct Grid {
   int nx = 0, ny = 0;
@@ -251,7 +250,7 @@ void write_figure_chart(const io::OutputDir& out, const std::vector<Row>& rows, 
   one.x = {0.0, x.front()};
   one.y = {1.0, 1.0};
   chart.series.push_back(one);
-  write_via_temporary(out, "convergence.png", [&](const auto& p) { render::write_chart_png(chart, p); });
+  out.write_text("convergence.png", render::chart_png(chart));
 }
 
 nlohmann::ordered_json figures(const std::vector<Row>& rows, const Study& study) {

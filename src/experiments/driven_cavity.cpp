@@ -10,7 +10,6 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::write_via_temporary;
 
 using scene::CavityScene;
 using scene::read_cavity_scene;
@@ -43,14 +42,14 @@ class VtkFrameWriter {
   void operator()(double t, const fluid::FlowState& state, const std::vector<Vec2>& tracers) {
     const std::string id = std::to_string(1000000 + entries_.size() / 2).substr(1);
     const std::string field = "field_" + id + ".vti", points = "tracers_" + id + ".vtp";
-    write_via_temporary(frames_, field, [&](const auto& p) { io::write_flow_vti(p, state); });
-    write_via_temporary(frames_, points, [&](const auto& p) { io::write_points_vtp(p, tracers); });
+    io::write_streamed(frames_, field, [&](std::ostream& o) { io::write_flow_vti(o, state); });
+    io::write_streamed(frames_, points, [&](std::ostream& o) { io::write_points_vtp(o, tracers); });
     entries_.push_back({t, "frames/" + field, 0, "field"});
     entries_.push_back({t, "frames/" + points, 1, "tracers"});
   }
   /// The ParaView time series of every frame written so far.
   void write_series() const {
-    if (!entries_.empty()) write_via_temporary(out_, "cavity.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
+    if (!entries_.empty()) io::write_streamed(out_, "cavity.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
   }
 
  private:
@@ -65,11 +64,11 @@ void write_pictures(const io::OutputDir& out, const studies::DrivenCavityResult&
   picture.caption = caption;
   picture.tracers_m = r.final_tracers_m;
   render::FieldPictureOptions options;
-  write_via_temporary(out, "cavity_speed.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
+  out.write_text("cavity_speed.png", render::field_png(picture, options));
   options.quantity = render::FieldQuantity::vorticity;
   options.arrows = false;
-  write_via_temporary(out, "cavity_vorticity.png", [&](const auto& p) { render::write_field_png(picture, options, p); });
-  write_via_temporary(out, "cavity.vti", [&](const auto& p) { io::write_flow_vti(p, r.final_state); });
+  out.write_text("cavity_vorticity.png", render::field_png(picture, options));
+  io::write_streamed(out, "cavity.vti", [&](std::ostream& o) { io::write_flow_vti(o, r.final_state); });
 }
 
 void write_figure_8_7(const io::OutputDir& out, const std::vector<studies::CavityFigurePanel>& panels) {
@@ -83,8 +82,7 @@ void write_figure_8_7(const io::OutputDir& out, const std::vector<studies::Cavit
   const int columns = static_cast<int>(panels.size() / 2 > 0 ? panels.size() / 2 : 1);
   render::FieldPictureOptions options;
   options.panel_px = 360;
-  write_via_temporary(out, "figure_8_7.png",
-                      [&](const auto& p) { render::write_field_panels_png(pictures, columns, options, p); });
+  out.write_text("figure_8_7.png", render::field_panels_png(pictures, columns, options));
 }
 
 nlohmann::ordered_json key_figures(const studies::DrivenCavityResult& r, double tolerance) {
@@ -135,7 +133,7 @@ void write_convergence(const io::OutputDir& out, const studies::DrivenCavityResu
   if (tolerance > 0.0 && !r.history.empty())
     chart.series.push_back({"steady tolerance", {r.history.front()[0], r.history.back()[0]}, {tolerance, tolerance},
                             false, true, true});
-  write_via_temporary(out, "convergence.png", [&](const auto& p) { render::write_chart_png(chart, p); });
+  out.write_text("convergence.png", render::chart_png(chart));
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context& ctx) {

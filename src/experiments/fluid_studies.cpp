@@ -14,9 +14,7 @@ using scene::read_solver_cost;
 using scene::read_taylor_green;
 
 void write_chart(const io::OutputDir& out, const std::string& name, render::ChartSpec chart) {
-  const auto tmp = out.temporary_for(name);
-  render::write_chart_png(chart, tmp);
-  out.commit(tmp, name);
+  out.write_text(name, render::chart_png(chart));
 }
 
 // ---- taylor-green ---------------------------------------------------------------------------

@@ -16,7 +16,6 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::write_via_temporary;
 
 /// The experiment's scene: the definition's tank, coupling and schedule with the cells, viscosity
 /// and duration set from `re`, `grid` and `cycles` (the bell is generated at the tank's resolution).
@@ -103,9 +102,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     po.arrows = false;
     po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
     if (!strokes.empty())
-      write_via_temporary(out, "strokes.png", [&](const auto& path) {
-        render::write_field_panels_png(strokes, static_cast<int>(strokes.size()), po, path);
-      });
+      out.write_text("strokes.png", render::field_panels_png(strokes, static_cast<int>(strokes.size()), po));
 
     // Displacement of the centroid along y over each full cycle (1 s at 1 Hz).
     std::vector<double> per_cycle;
@@ -135,7 +132,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
     sg.x = t;
     sg.y = gap;
     chart.series = {sy, sg};
-    if (!t.empty()) write_via_temporary(out, "trajectory.png", [&](const auto& path) { render::write_chart_png(chart, path); });
+    if (!t.empty()) out.write_text("trajectory.png", render::chart_png(chart));
 
     nlohmann::ordered_json fig;
     fig["units"] = {{"length", "m"}, {"time", "s"}};

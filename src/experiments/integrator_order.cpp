@@ -88,9 +88,7 @@ void write_outputs(const io::OutputDir& out, const std::vector<ConvergenceStudy>
   }
   out.write_text("convergence.csv", runs.text());
   out.write_text("orders.csv", orders.text());
-  const auto tmp = out.temporary_for("integrator_order.png");
-  render::write_chart_png(chart, tmp);
-  out.commit(tmp, "integrator_order.png");
+  out.write_text("integrator_order.png", render::chart_png(chart));
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_integrator_order(const Context& ctx) {

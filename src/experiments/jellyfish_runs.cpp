@@ -18,7 +18,6 @@ namespace jellysim::experiments {
 
 namespace {
 
-using io::write_via_temporary;
 
 std::string frame_id(std::size_t k) { return std::to_string(1000000 + k).substr(1); }
 
@@ -125,18 +124,18 @@ class FrameFiles {
   void write_snapshot(FrameSnapshot& s) {
     const std::string id = frame_id(s.index);
     if (options_.vtk) {
-      write_via_temporary(frames_, field_file(id), [&](const auto& p) { io::write_flow_vti(p, *s.flow); });
-      write_via_temporary(frames_, tracers_file(id), [&](const auto& p) { io::write_polydata_vtp(p, s.tracers); });
-      write_via_temporary(frames_, body_file(id), [&](const auto& p) { io::write_polydata_vtp(p, s.body); });
+      io::write_streamed(frames_, field_file(id), [&](std::ostream& o) { io::write_flow_vti(o, *s.flow); });
+      io::write_streamed(frames_, tracers_file(id), [&](std::ostream& o) { io::write_polydata_vtp(o, s.tracers); });
+      io::write_streamed(frames_, body_file(id), [&](std::ostream& o) { io::write_polydata_vtp(o, s.body); });
       add_pvd_entries(s.time_s, id);
-      write_via_temporary(out_, "jellyfish.pvd", [&](const auto& p) { io::write_pvd(p, entries_); });
+      io::write_streamed(out_, "jellyfish.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
     }
     if (s.picture) {
       render::FieldPictureOptions po;
       po.quantity = options_.quantity;
       po.arrows = options_.quantity == render::FieldQuantity::speed;
       s.picture->state = &*s.flow;
-      write_via_temporary(frames_, "slice_" + id + ".png", [&](const auto& p) { render::write_field_png(*s.picture, po, p); });
+      frames_.write_text("slice_" + id + ".png", render::field_png(*s.picture, po));
     }
   }
 
@@ -355,7 +354,10 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
       },
       progress, static_cast<std::int64_t>(frame));
   if (files) files->flush();  // every frame on disk (or a write's error) before the run's own files
-  if (every > 0 && rec.stats.failure.empty()) out->remove(io::kCheckpointName);  // the run is whole
+  if (every > 0 && rec.stats.failure.empty()) {  // the run is whole
+    if (checkpoints->keep_when_whole) write_checkpoint(sim);
+    else out->remove(io::kCheckpointName);
+  }
   const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
   if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
   for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));
@@ -425,7 +427,7 @@ void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::Met
     c.y_label = quantity;
     c.y_unit = unit;
     c.series = std::move(list);
-    write_via_temporary(out, name, [&](const auto& p) { render::write_chart_png(c, p); });
+    out.write_text(name, render::chart_png(c));
   };
   chart("position.png", title + ": position (Fig. 8.15)", "bell centroid travelled", "m",
         {series("bell centroid", [](const auto& r) { return r.position; }),

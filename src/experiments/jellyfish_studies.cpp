@@ -22,10 +22,9 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::write_via_temporary;
 
 void write_chart(const io::OutputDir& out, const std::string& name, render::ChartSpec chart) {
-  write_via_temporary(out, name, [&](const auto& p) { render::write_chart_png(chart, p); });
+  out.write_text(name, render::chart_png(chart));
 }
 
 // ---------------------------------------------------------------- oval membrane (Figs 8.8, 8.9)
@@ -51,9 +50,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
       d.marked_points = {Vec2{0, 0}, Vec2{base.box_m, base.box_m}};  // keeps the box in view
       panels.push_back(std::move(d));
     }
-    write_via_temporary(out, "shapes.png", [&](const auto& p) {
-      render::write_drawing_strip_png(panels, 3, "oval membrane (" + base.solver + ")", p);
-    });
+    out.write_text("shapes.png", render::drawing_strip_png(panels, 3, "oval membrane (" + base.solver + ")"));
     // Area retained over time (Fig. 8.9) and the refinement study.
     render::ChartSpec chart;
     chart.title = "Oval membrane: area retained (" + base.solver + ")";
@@ -167,9 +164,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_instability(const Context& 
     for (const auto& s : snaps) pictures.push_back(s->picture);
     if (!pictures.empty()) {
       const std::string figure = name == "structural-instability" ? "figure_8_11.png" : "figure_8_12.png";
-      write_via_temporary(out, figure, [&](const auto& p) {
-        render::write_field_panels_png(pictures, std::min<int>(3, static_cast<int>(pictures.size())), po, p);
-      });
+      out.write_text(figure, render::field_panels_png(pictures, std::min<int>(3, static_cast<int>(pictures.size())), po));
     }
     SwimRecording rec;
     rec.frames = frames;

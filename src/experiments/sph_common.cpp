@@ -62,9 +62,7 @@ void write_strip(const io::OutputDir& out, const std::string& name, const std::s
     const std::size_t pick = shown == 1 ? 0 : k * (chosen.size() - 1) / (shown - 1);
     panels.push_back(draw(scene, frames[chosen[pick]], options));
   }
-  const auto tmp = out.temporary_for(name);
-  render::write_drawing_strip_png(panels, std::min<int>(static_cast<int>(shown), 4), title, tmp);
-  out.commit(tmp, name);
+  out.write_text(name, render::drawing_strip_png(panels, std::min<int>(static_cast<int>(shown), 4), title));
 }
 
 std::vector<std::array<Vec2, 2>> box_segments(Vec2 lo, Vec2 hi) {

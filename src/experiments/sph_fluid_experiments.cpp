@@ -16,9 +16,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 void write_chart(const io::OutputDir& out, const std::string& name, const render::ChartSpec& chart) {
-  const auto tmp = out.temporary_for(name);
-  render::write_chart_png(chart, tmp);
-  out.commit(tmp, name);
+  out.write_text(name, render::chart_png(chart));
 }
 
 // ---- sph-stream (Figure 8.4) ---------------------------------------------------------------------

@@ -38,9 +38,7 @@ Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::Out
     b = geometry::synthetic_bell(contracted);
   }
   const render::RgbImage picture = render::render_stages_picture(a, b, s.pipeline, s.panel_width, s.panel_height);
-  const auto tmp = out.temporary_for("stages.png");
-  render::write_png(picture, tmp);
-  out.commit(tmp, "stages.png");
+  out.write_text("stages.png", render::png_bytes(picture));
   const geometry::GeometryBuilder builder(s.pipeline.geometry, geometry::resolve_noise_length(s.pipeline.geometry.noise, a));
   const geometry::FrameGeometry g = builder.build(a);
   nlohmann::ordered_json figures;

@@ -120,9 +120,7 @@ void write_energy_outputs(const io::OutputDir& out, const Recording& rec, const 
     }
   }
   out.write_text("energy.csv", csv.text());
-  const auto tmp = out.temporary_for("energy.png");
-  render::write_chart_png(chart, tmp);
-  out.commit(tmp, "energy.png");
+  out.write_text("energy.png", render::chart_png(chart));
 }
 
 void write_strip(const io::OutputDir& out, const elastic::Body& body, const Recording& rec, int strip_frames) {
@@ -133,9 +131,7 @@ void write_strip(const io::OutputDir& out, const elastic::Body& body, const Reco
     const std::size_t f = shown == 1 ? 0 : k * (n - 1) / (shown - 1);
     panels.push_back(draw_bar(body, rec.positions[f], rec.times[f]));
   }
-  const auto tmp = out.temporary_for("swinging_bar.png");
-  render::write_drawing_strip_png(panels, std::min<int>(static_cast<int>(shown), 6), "swinging bar", tmp);
-  out.commit(tmp, "swinging_bar.png");
+  out.write_text("swinging_bar.png", render::drawing_strip_png(panels, std::min<int>(static_cast<int>(shown), 6), "swinging bar"));
 }
 
 nlohmann::ordered_json key_figures(const Recording& rec, const sim::RunStatistics& stats, double wall_seconds,

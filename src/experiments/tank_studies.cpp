@@ -16,7 +16,6 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::write_via_temporary;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
@@ -104,7 +103,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
     chart.series = {series("steered left", to_left.heading_deg), series("not steered", none.heading_deg),
                     series("steered right", to_right.heading_deg), series("bearing of left target", to_left.bearing_deg),
                     series("bearing of right target", to_right.bearing_deg)};
-    write_via_temporary(out, "heading.png", [&](const auto& p) { render::write_chart_png(chart, p); });
+    out.write_text("heading.png", render::chart_png(chart));
 
     // After the settling time: mean heading and mean distance from the target's bearing.
     const double frequency = settings.jellyfish().frequency_hz;
@@ -169,7 +168,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_obstacle_flow(const Context
     render::FieldPictureOptions po;
     po.quantity = render::FieldQuantity::vorticity;
     const render::FieldPicture p = swim_picture(sim, 0.0);
-    write_via_temporary(out, "flow.png", [&](const auto& path) { render::write_field_png(p, po, path); });
+    out.write_text("flow.png", render::field_png(p, po));
     render::ChartSpec chart;
     chart.title = "Flow past a cylinder: drag coefficient";
     chart.x_label = "t";
@@ -180,7 +179,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_obstacle_flow(const Context
     s.x = t;
     s.y = cd;
     chart.series = {s};
-    write_via_temporary(out, "drag.png", [&](const auto& path) { render::write_chart_png(chart, path); });
+    out.write_text("drag.png", render::chart_png(chart));
     nlohmann::ordered_json fig;
     fig["units"] = {{"force", "N/m"}, {"velocity", "m/s"}, {"length", "m"}};
     fig["reynolds_number"] = speed * diameter / std::max(settings.tank.viscosity_m2_per_s, 1e-12);

@@ -15,6 +15,7 @@
 #include <set>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 #include <vector>
 #include <fcntl.h>
 #include <sys/file.h>
@@ -48,6 +49,32 @@ struct Descriptor {
   }
 };
 
+/// Throws the RunError of a failed write of `shown`; `error` is the errno of the call that failed,
+/// taken right after it (anything called since may have changed errno).
+[[noreturn]] void fail_writing(const fs::path& shown, int error) {
+  throw RunError("cannot write '" + shown.string() + "': " + os_reason(error));
+}
+
+/// fsync and close of a written file; the first that fails throws with its own reason.
+void sync_and_close(int& fd, const fs::path& shown) {
+  const int synced = ::fsync(fd);
+  const int sync_error = errno;
+  const int closed = ::close(fd);
+  const int close_error = errno;
+  fd = -1;
+  if (synced != 0) fail_writing(shown, sync_error);
+  if (closed != 0 && close_error != EINTR) fail_writing(shown, close_error);
+}
+
+/// rename(2) of a written temporary into place; on failure the temporary is removed and the
+/// rename's own reason is reported.
+void move_into_place(const fs::path& temporary, const fs::path& target) {
+  if (::rename(temporary.c_str(), target.c_str()) == 0) return;
+  const int error = errno;
+  ::unlink(temporary.c_str());
+  fail_writing(target, error);
+}
+
 }  // namespace
 
 TemporaryFile create_temporary_beside(const fs::path& target) {
@@ -57,7 +84,8 @@ TemporaryFile create_temporary_beside(const fs::path& target) {
     // Exclusive: fails on anything already there, a symlink included (never followed).
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd >= 0) return {std::move(path), fd};
-    if (errno != EEXIST) throw RunError("cannot write '" + target.string() + "': " + os_reason(errno));
+    const int error = errno;
+    if (error != EEXIST) fail_writing(target, error);
   }
   throw RunError("cannot write '" + target.string() + "': no free temporary name beside it");
 }
@@ -66,36 +94,35 @@ void write_all(int fd, std::string_view content, const fs::path& shown) {
   while (!content.empty()) {
     const ssize_t n = ::write(fd, content.data(), content.size());
     if (n < 0) {
-      if (errno == EINTR) continue;
-      throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
+      const int error = errno;
+      if (error == EINTR) continue;
+      fail_writing(shown, error);
     }
     content.remove_prefix(static_cast<std::size_t>(n));
   }
 }
 
-void sync_file(const fs::path& path, const fs::path& shown) {
-  Descriptor d{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW)};
-  if (d.fd < 0) throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
-  if (::fsync(d.fd) != 0) throw RunError("cannot write '" + shown.string() + "': " + os_reason(errno));
-}
-
 void write_file_atomically(const fs::path& target, std::string_view content) {
   TemporaryFile tmp = create_temporary_beside(target);
   try {
-    Descriptor d{tmp.fd};
-    write_all(d.fd, content, target);
-    if (::fsync(d.fd) != 0) throw RunError("cannot write '" + target.string() + "': " + os_reason(errno));
+    write_all(tmp.fd, content, target);
+    sync_and_close(tmp.fd, target);
   } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp.path, ec);
+    if (tmp.fd >= 0) ::close(tmp.fd);
+    ::unlink(tmp.path.c_str());
     throw;
   }
-  std::error_code ec;
-  fs::rename(tmp.path, target, ec);
-  if (ec) {
-    fs::remove(tmp.path, ec);
-    throw RunError("cannot write '" + target.string() + "': " + ec.message());
-  }
+  move_into_place(tmp.path, target);
+}
+
+void write_file(const fs::path& path, std::string_view content) {
+  Descriptor d{::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666)};
+  if (d.fd < 0) fail_writing(path, errno);
+  write_all(d.fd, content, path);
+  const int closed = ::close(d.fd);
+  const int error = errno;
+  d.fd = -1;
+  if (closed != 0 && error != EINTR) fail_writing(path, error);
 }
 
 namespace {
@@ -232,7 +259,7 @@ class RunManifest {
     const std::lock_guard lock(mutex_);
     if (!names_.insert(relative).second) return;
     Descriptor d{::open(file_.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC)};
-    if (d.fd < 0) throw RunError("cannot write '" + file_.string() + "': " + os_reason(errno));
+    if (d.fd < 0) fail_writing(file_, errno);
     write_all(d.fd, relative + '\n', file_);
   }
   void finish(bool keep_run_id) {
@@ -273,11 +300,14 @@ std::string manifest_run_id(const fs::path& dir) {
 namespace {
 
 /// A temporary of OutputDir (NAME.tmp-PID-RANDOM, or NAME.tmp-PID of earlier versions) that a
-/// killed run left behind.
-bool is_leftover_temporary(const std::string& name) {
+/// killed run left behind, or the ffmpeg log that earlier versions kept beside a video's temporary
+/// (NAME.tmp-PID-RANDOM.ffmpeg-log).
+bool is_leftover_temporary(std::string_view name) {
+  constexpr std::string_view kEncoderLog = ".ffmpeg-log";
+  if (name.ends_with(kEncoderLog)) name.remove_suffix(kEncoderLog.size());
   const std::size_t at = name.rfind(".tmp-");
   if (at == std::string::npos || at + 5 == name.size()) return false;
-  const std::string_view tail = std::string_view(name).substr(at + 5);
+  const std::string_view tail = name.substr(at + 5);
   const std::size_t dash = tail.find('-');
   const std::string_view pid = tail.substr(0, dash);
   const auto digit = [](char c) { return c >= '0' && c <= '9'; };
@@ -407,36 +437,45 @@ OutputDir::OutputDir(std::filesystem::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec || !std::filesystem::is_directory(dir_)) {
-    throw RunError("cannot create output directory '" + dir_.string() + "': " + ec.message());
+    throw RunError("cannot create output directory '" + dir_.string() + "': " + (ec ? ec.message() : "it is not a directory"));
   }
 }
 
-std::filesystem::path OutputDir::temporary_for(std::string_view name) const {
-  TemporaryFile tmp = create_temporary_beside(dir_ / name);
-  ::close(tmp.fd);  // the writer opens it by name (an empty regular file of ours)
-  return tmp.path;
+PendingFile OutputDir::temporary_for(std::string_view name) const {
+  return PendingFile(*this, std::string(name), create_temporary_beside(dir_ / name));
 }
 
-void OutputDir::commit(const std::filesystem::path& temporary, std::string_view name) const {
-  const fs::path target = dir_ / name;
-  std::error_code ec;
-  try {
-    sync_file(temporary, target);  // on disk before it takes the final name
-  } catch (...) {
-    std::filesystem::remove(temporary, ec);
-    throw;
-  }
-  std::filesystem::rename(temporary, target, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    throw RunError("cannot write '" + target.string() + "': " + ec.message());
-  }
-  if (manifest_) manifest_->record(prefix_ + std::string(name));
+PendingFile::PendingFile(PendingFile&& other) noexcept
+    : dir_(std::move(other.dir_)), name_(std::move(other.name_)), file_(std::move(other.file_)) {
+  other.file_ = {{}, -1};
+}
+
+PendingFile::~PendingFile() {
+  if (file_.fd >= 0) ::close(file_.fd);
+  if (!file_.path.empty()) ::unlink(file_.path.c_str());
+}
+
+void PendingFile::commit() {
+  if (file_.fd < 0) throw std::logic_error("PendingFile::commit: already committed");
+  const fs::path target = dir_.dir_ / name_;
+  // Still our file under the temporary's name? (A thing planted there is neither followed nor
+  // moved into place.)
+  struct stat ours {}, named {};
+  if (::fstat(file_.fd, &ours) != 0 || ::lstat(file_.path.c_str(), &named) != 0 || ours.st_dev != named.st_dev ||
+      ours.st_ino != named.st_ino)
+    throw RunError("cannot write '" + target.string() + "': its temporary '" + file_.path.string() +
+                   "' was replaced while it was written");
+  sync_and_close(file_.fd, target);  // on disk before it takes the final name
+  // Listed before it takes its name: a run killed in between leaves nothing unlisted.
+  if (dir_.manifest_) dir_.manifest_->record(dir_.prefix_ + name_);
+  const fs::path temporary = std::exchange(file_.path, {});
+  move_into_place(temporary, target);
 }
 
 void OutputDir::write_text(std::string_view name, std::string_view content) const {
-  write_file_atomically(dir_ / name, content);
-  if (manifest_) manifest_->record(prefix_ + std::string(name));
+  PendingFile file = temporary_for(name);
+  write_all(file.fd(), content, dir_ / name);
+  file.commit();
 }
 
 void OutputDir::write_json(std::string_view name, const nlohmann::ordered_json& json) const {

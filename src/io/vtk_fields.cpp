@@ -2,10 +2,8 @@
 
 #include <zlib.h>
 
-#include <cerrno>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <ostream>
 #include <sstream>
@@ -87,18 +85,13 @@ std::vector<double> cell_values(const fluid::Field& f) {
   return v;
 }
 
-std::ofstream open_for_writing(const std::filesystem::path& path) {
-  errno = 0;
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw RunError("cannot write '" + path.string() + "': " + os_reason(errno ? errno : EIO));
-  return out;
-}
-
-void check_written(std::ostream& out, const std::filesystem::path& path) {
-  errno = 0;
-  out.flush();
-  // The stream keeps no reason; the failed write(2) under it left errno (EIO when it did not).
-  if (!out) throw RunError("cannot write '" + path.string() + "': " + os_reason(errno ? errno : EIO));
+/// Writes what `write(stream)` produces to `path` through io::write_file, which reports the
+/// reason of the call that failed (a stream keeps none).
+template <class Write>
+void write_to_path(const std::filesystem::path& path, Write&& write) {
+  std::ostringstream out;
+  write(out);
+  write_file(path, out.view());
 }
 
 /// Full double precision on the stream for the duration of one write.
@@ -156,9 +149,7 @@ void write_flow_vti(std::ostream& out, const fluid::FlowState& state) {
 }
 
 void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& state) {
-  std::ofstream out = open_for_writing(path);
-  write_flow_vti(out, state);
-  check_written(out, path);
+  write_to_path(path, [&](std::ostream& out) { write_flow_vti(out, state); });
 }
 
 void write_polydata_vtp(std::ostream& out, const VtkPolyData& d) {
@@ -206,18 +197,20 @@ void write_polydata_vtp(std::ostream& out, const VtkPolyData& d) {
 }
 
 void write_polydata_vtp(const std::filesystem::path& path, const VtkPolyData& data) {
-  std::ofstream out = open_for_writing(path);
-  write_polydata_vtp(out, data);
-  check_written(out, path);
+  write_to_path(path, [&](std::ostream& out) { write_polydata_vtp(out, data); });
 }
 
-void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m) {
+void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m) {
   VtkPolyData d;
   d.points_m = points_m;
   VtkArray id{"id", 1, {}, true};
   for (std::size_t k = 0; k < points_m.size(); ++k) id.values.push_back(static_cast<double>(k));
   d.point_data.push_back(std::move(id));
-  write_polydata_vtp(path, d);
+  write_polydata_vtp(out, d);
+}
+
+void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m) {
+  write_to_path(path, [&](std::ostream& out) { write_points_vtp(out, points_m); });
 }
 
 void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries) {
@@ -233,9 +226,7 @@ void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries) {
 }
 
 void write_pvd(const std::filesystem::path& path, const std::vector<PvdEntry>& entries) {
-  std::ofstream out = open_for_writing(path);
-  write_pvd(out, entries);
-  check_written(out, path);
+  write_to_path(path, [&](std::ostream& out) { write_pvd(out, entries); });
 }
 
 }  // namespace jellysim::io

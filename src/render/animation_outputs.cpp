@@ -427,9 +427,13 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   const bool pixels = s.png_frames || s.video;
   std::unique_ptr<OffscreenRenderer> renderer;
   if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
+  // The video's file, then its encoder (stopped first when the run fails: the file is removed).
+  std::optional<io::PendingFile> video_file;
   std::unique_ptr<Mp4Writer> video;
-  const auto video_tmp = out.temporary_for("jellyfish.mp4");
-  if (s.video) video = std::make_unique<Mp4Writer>(video_tmp, s.width_px, s.height_px, s.fps);
+  if (s.video) {
+    video_file.emplace(out.temporary_for("jellyfish.mp4"));
+    video = std::make_unique<Mp4Writer>(video_file->path(), video_file->fd(), s.width_px, s.height_px, s.fps);
+  }
   // Folders only for what is written (an empty folder would be a surprise).
   const std::optional<io::OutputDir> frame_dir =
       s.png_frames ? std::optional(out.subdirectory("frames")) : std::nullopt;
@@ -485,9 +489,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
       render_s += seconds_since(t0);
       if (s.png_frames) {
         const std::string name = frame_name(k, "png");
-        const auto tmp = frame_dir->temporary_for(name);
-        write_png(image, tmp);
-        frame_dir->commit(tmp, name);
+        frame_dir->write_text(name, png_bytes(image));
         result.files.push_back("frames/" + name);
       }
       if (video) video->add(image);
@@ -509,7 +511,7 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
   }
   if (video) {
     video->finish();
-    out.commit(video_tmp, "jellyfish.mp4");
+    video_file->commit();
     result.files.push_back("jellyfish.mp4");
   }
   if (caching) caches.write(s, animation.times_s, out, result);

@@ -149,25 +149,27 @@ void draw_panel(plstream& pls, const FieldPicture& panel, const FieldPictureOpti
 
 }  // namespace
 
-void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns, const FieldPictureOptions& options,
-                            const std::filesystem::path& png_path) {
+std::string field_panels_png(const std::vector<FieldPicture>& panels, int columns, const FieldPictureOptions& options) {
   if (panels.empty()) throw std::invalid_argument("no panels to draw");
   columns = std::clamp(columns, 1, static_cast<int>(panels.size()));
   const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
-  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
-  plstream pls;
-  pls.sdev("pngcairo");
-  pls.sfnam(png_path.string().c_str());
-  pls.spage(0, 0, columns * options.panel_px, rows * options.panel_px, 0, 0);
-  pls.scol0(0, 255, 255, 255);  // background
-  pls.scol0(1, 20, 20, 20);     // axes, arrows
-  pls.scol0(2, 230, 30, 160);   // tracers
-  pls.scol0(3, 30, 110, 240);   // thin segments (muscles)
-  pls.ssub(columns, rows);
-  pls.init();
-  set_colour_map(pls, options.quantity);
-  pls.schr(0, 0.7);
-  for (const FieldPicture& p : panels) draw_panel(pls, p, options);
+  return plplot_png([&](plstream& pls) {
+    pls.spage(0, 0, columns * options.panel_px, rows * options.panel_px, 0, 0);
+    pls.scol0(0, 255, 255, 255);  // background
+    pls.scol0(1, 20, 20, 20);     // axes, arrows
+    pls.scol0(2, 230, 30, 160);   // tracers
+    pls.scol0(3, 30, 110, 240);   // thin segments (muscles)
+    pls.ssub(columns, rows);
+    pls.init();
+    set_colour_map(pls, options.quantity);
+    pls.schr(0, 0.7);
+    for (const FieldPicture& p : panels) draw_panel(pls, p, options);
+  });
+}
+
+void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns, const FieldPictureOptions& options,
+                            const std::filesystem::path& png_path) {
+  io::write_file(png_path, field_panels_png(panels, columns, options));
 }
 
 namespace {
@@ -278,9 +280,8 @@ RgbImage draw_field_picture(const FieldPicture& panel, const FieldPictureOptions
   return image;
 }
 
-void write_field_png(const FieldPicture& picture, const FieldPictureOptions& options,
-                     const std::filesystem::path& png_path) {
-  write_png(draw_field_picture(picture, options), png_path);
+std::string field_png(const FieldPicture& picture, const FieldPictureOptions& options) {
+  return png_bytes(draw_field_picture(picture, options));
 }
 
 }  // namespace jellysim::render

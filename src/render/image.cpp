@@ -16,6 +16,7 @@
 #pragma GCC diagnostic pop
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 
 namespace jellysim::render {
 
@@ -44,15 +45,24 @@ void RgbImage::blend(int x, int y, Rgb c, double a) {
   }
 }
 
-void write_png(const RgbImage& image, const std::filesystem::path& path) {
+std::string png_bytes(const RgbImage& image) {
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
-  if (!png_image_write_to_file(&png, path.c_str(), 0, image.pixels.data(), image.width * 3, nullptr))
-    throw RunError("cannot write PNG '" + path.string() + "': " + png.message);
+  // Twice: the first call measures, the second encodes into a buffer of that size.
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), image.width * 3, nullptr))
+    throw RunError(std::string("cannot encode a PNG: ") + png.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), image.width * 3, nullptr))
+    throw RunError(std::string("cannot encode a PNG: ") + png.message);
+  bytes.resize(size);
+  return bytes;
 }
+
+void write_png(const RgbImage& image, const std::filesystem::path& path) { io::write_file(path, png_bytes(image)); }
 
 RgbImage read_png(const std::filesystem::path& path) {
   png_image png{};

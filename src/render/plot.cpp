@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 namespace jellysim::render {
@@ -42,10 +43,8 @@ double nice_tick(double range) {
   return power * (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0);
 }
 
-/// Starts a PNG stream with a white background and dark axes.
-void open_png(plstream& pls, const std::filesystem::path& path, int width, int height) {
-  pls.sdev("pngcairo");
-  pls.sfnam(path.string().c_str());
+/// Starts a PNG stream (plplot_png) with a white background and dark axes.
+void open_png(plstream& pls, int width, int height) {
   pls.spage(0, 0, width, height, 0, 0);
   pls.scol0(0, 255, 255, 255);
   pls.scol0(1, 30, 30, 30);
@@ -140,23 +139,10 @@ ChartSpec in_shown_units(const ChartSpec& chart, std::string& x_label, std::stri
   return shown;
 }
 
-}  // namespace
-
-void write_chart_png(const ChartSpec& spec, const std::filesystem::path& png_path) {
-  std::string x_label, y_label;
-  const ChartSpec chart = in_shown_units(spec, x_label, y_label);
-  Bounds b;
+void draw_chart(plstream& pls, const ChartSpec& chart, const Bounds& b, const std::string& x_label,
+                const std::string& y_label) {
+  open_png(pls, chart.width_px, chart.height_px);
   std::vector<PLFLT> x, y;
-  for (const Series& s : chart.series) {
-    plotted_values(s, chart.log_x, chart.log_y, x, y);
-    for (std::size_t i = 0; i < x.size(); ++i) b.add(x[i], y[i]);
-  }
-  if (b.empty()) throw RunError("chart '" + chart.title + "' has no finite data to plot");
-  b.pad(0.05);
-
-  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
-  plstream pls;
-  open_png(pls, png_path, chart.width_px, chart.height_px);
   pls.col0(1);
   pls.schr(0, 0.9);
   // The plot area leaves room below for the legend (a line per series).
@@ -182,8 +168,61 @@ void write_chart_png(const ChartSpec& spec, const std::filesystem::path& png_pat
   draw_legend(pls, chart);
 }
 
-void write_drawing_strip_png(const std::vector<Drawing>& panels, int columns, const std::string& title,
-                             const std::filesystem::path& png_path, int panel_px) {
+}  // namespace
+
+std::string chart_png(const ChartSpec& spec) {
+  std::string x_label, y_label;
+  const ChartSpec chart = in_shown_units(spec, x_label, y_label);
+  Bounds b;
+  std::vector<PLFLT> x, y;
+  for (const Series& s : chart.series) {
+    plotted_values(s, chart.log_x, chart.log_y, x, y);
+    for (std::size_t i = 0; i < x.size(); ++i) b.add(x[i], y[i]);
+  }
+  if (b.empty()) throw RunError("chart '" + chart.title + "' has no finite data to plot");
+  b.pad(0.05);
+
+  return plplot_png([&](plstream& pls) { draw_chart(pls, chart, b, x_label, y_label); });
+}
+
+void write_chart_png(const ChartSpec& chart, const std::filesystem::path& png_path) {
+  io::write_file(png_path, chart_png(chart));
+}
+
+namespace {
+
+void draw_strip_panel(plstream& pls, const Drawing& d, const Bounds& b, const std::array<double, 4>& viewport) {
+  const auto [vx0, vx1, vy0, vy1] = viewport;
+  pls.col0(1);
+  pls.adv(0);
+  pls.vpor(vx0, vx1, vy0, vy1);
+  pls.wind(b.xmin, b.xmax, b.ymin, b.ymax);
+  pls.box("bcnst", nice_tick(b.xmax - b.xmin), 0, "bcnstv", nice_tick(b.ymax - b.ymin), 0);
+  pls.lab("", "", d.caption.c_str());
+  pls.col0(kFirstSeriesColour);
+  for (const auto& seg : d.segments) {
+    PLFLT x[2] = {seg[0].x, seg[1].x}, y[2] = {seg[0].y, seg[1].y};
+    pls.line(2, x, y);
+  }
+  pls.col0(kFirstSeriesColour + 1);
+  pls.ssym(0, 0.6);
+  for (Vec2 p : d.points) {
+    PLFLT x = p.x, y = p.y;
+    pls.string(1, &x, &y, "#(728)");
+  }
+  pls.col0(1);
+  pls.ssym(0, 2.0);
+  for (Vec2 p : d.marked_points) {
+    PLFLT x = p.x, y = p.y;
+    pls.string(1, &x, &y, "#(727)");
+  }
+  pls.ssym(0, 1.0);
+}
+
+}  // namespace
+
+std::string drawing_strip_png(const std::vector<Drawing>& panels, int columns, const std::string& title,
+                              int panel_px) {
   if (panels.empty() || columns < 1) throw RunError("drawing strip '" + title + "' has no panels");
   Bounds b;
   for (const Drawing& d : panels) {
@@ -199,37 +238,12 @@ void write_drawing_strip_png(const std::vector<Drawing>& panels, int columns, co
   constexpr double vx0 = 0.16, vx1 = 0.97, vy0 = 0.14, vy1 = 0.84;
   const int panel_height_px = static_cast<int>(panel_px * (vx1 - vx0) * aspect / (vy1 - vy0));
 
-  const std::lock_guard<std::mutex> plplot(plplot_mutex());  // PLplot is not thread-safe
-  plstream pls;
-  pls.ssub(columns, rows);
-  open_png(pls, png_path, columns * panel_px, rows * panel_height_px);
-  pls.schr(0, 0.7);
-  for (const Drawing& d : panels) {
-    pls.col0(1);
-    pls.adv(0);
-    pls.vpor(vx0, vx1, vy0, vy1);
-    pls.wind(b.xmin, b.xmax, b.ymin, b.ymax);
-    pls.box("bcnst", nice_tick(b.xmax - b.xmin), 0, "bcnstv", nice_tick(b.ymax - b.ymin), 0);
-    pls.lab("", "", d.caption.c_str());
-    pls.col0(kFirstSeriesColour);
-    for (const auto& seg : d.segments) {
-      PLFLT x[2] = {seg[0].x, seg[1].x}, y[2] = {seg[0].y, seg[1].y};
-      pls.line(2, x, y);
-    }
-    pls.col0(kFirstSeriesColour + 1);
-    pls.ssym(0, 0.6);
-    for (Vec2 p : d.points) {
-      PLFLT x = p.x, y = p.y;
-      pls.string(1, &x, &y, "#(728)");
-    }
-    pls.col0(1);
-    pls.ssym(0, 2.0);
-    for (Vec2 p : d.marked_points) {
-      PLFLT x = p.x, y = p.y;
-      pls.string(1, &x, &y, "#(727)");
-    }
-    pls.ssym(0, 1.0);
-  }
+  return plplot_png([&](plstream& pls) {
+    pls.ssub(columns, rows);
+    open_png(pls, columns * panel_px, rows * panel_height_px);
+    pls.schr(0, 0.7);
+    for (const Drawing& d : panels) draw_strip_panel(pls, d, b, {vx0, vx1, vy0, vy1});
+  });
 }
 
 }  // namespace jellysim::render

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <thread>
 
 #include "jellysim/geometry/marine_snow.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/io/output.hpp"
 #include "jellysim/scene/live_parameters.hpp"
 #include "jellysim/viewer/field_image.hpp"
 #include "input_script.hpp"
@@ -627,9 +627,7 @@ void Viewer::write_stats() const {
   s["failure"] = failure_;
   s["state"] = state_json();
   s["timeline"] = timeline_;
-  std::ofstream out(options_.stats);
-  if (!out) throw RunError("viewer: cannot write " + options_.stats.string());
-  out << s.dump(2) << "\n";
+  io::write_file(options_.stats, s.dump(2) + "\n");  // errors name the file and the reason
 }
 
 }  // namespace

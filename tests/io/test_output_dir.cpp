@@ -166,15 +166,46 @@ TEST(OutputDir, TheRunIdIsInTheManifestWhileTheRunCanBeResumed) {
 TEST(SafeFiles, TemporariesAreNewUnpredictableRegularFiles) {
   const fs::path dir = fresh("temporaries");
   const OutputDir out(dir);
-  const fs::path a = out.temporary_for("frame.png");
-  const fs::path b = out.temporary_for("frame.png");
-  EXPECT_NE(a, b);
-  for (const fs::path& p : {a, b}) {
-    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(p))) << p;
-    EXPECT_EQ(fs::file_size(p), 0u);
-    EXPECT_EQ(p.filename().string().rfind("frame.png.tmp-" + std::to_string(::getpid()) + "-", 0), 0u) << p;
+  {
+    const PendingFile a = out.temporary_for("frame.png");
+    const PendingFile b = out.temporary_for("frame.png");
+    EXPECT_NE(a.path(), b.path());
+    for (const PendingFile* f : {&a, &b}) {
+      const fs::path& p = f->path();
+      EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(p))) << p;
+      EXPECT_EQ(fs::file_size(p), 0u);
+      EXPECT_EQ(p.filename().string().rfind("frame.png.tmp-" + std::to_string(::getpid()) + "-", 0), 0u) << p;
+      EXPECT_GE(f->fd(), 0);  // open: the writer writes through it
+    }
   }
+  EXPECT_TRUE(fs::is_empty(dir));  // not committed: removed
   fs::remove_all(dir);
+}
+
+// A file is written through the descriptor its temporary was made with, never reopened by name:
+// a symlink planted at the temporary's name between its creation and the write is not followed,
+// and not moved into place (issue 35, item 13).
+TEST(SafeFiles, ASymlinkPlantedAtATemporaryIsNeverWrittenThrough) {
+  const fs::path dir = fresh("planted_temporary");
+  const fs::path victim = fresh("planted_victim");
+  fs::create_directories(victim);
+  std::ofstream(victim / "precious.txt") << "keep";
+  const OutputDir out = OutputDir::for_run(dir, "test");
+  PendingFile file = out.temporary_for("frame.png");
+  fs::remove(file.path());
+  fs::create_symlink(victim / "precious.txt", file.path());
+  write_all(file.fd(), "pixels", out.file("frame.png"));
+  EXPECT_THROW(file.commit(), RunError);
+  EXPECT_EQ(slurp(victim / "precious.txt"), "keep");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "frame.png")));
+  // Committed unharmed, the file holds what was written through the descriptor.
+  PendingFile good = out.temporary_for("frame.png");
+  write_all(good.fd(), "pixels", out.file("frame.png"));
+  good.commit();
+  EXPECT_EQ(slurp(dir / "frame.png"), "pixels");
+  EXPECT_NE(slurp(dir / kManifestName).find("frame.png\n"), std::string::npos);
+  fs::remove_all(dir);
+  fs::remove_all(victim);
 }
 
 TEST(SafeFiles, APlantedSymlinkIsReplacedNeverWrittenThrough) {
@@ -211,6 +242,47 @@ TEST(SafeFiles, AWriteErrorNamesThePathAndTheOperatingSystemsReason) {
   } catch (const RunError& e) {
     EXPECT_NE(std::string(e.what()).find(os_reason(ENOENT)), std::string::npos) << e.what();
   }
+}
+
+// The log of the ffmpeg that earlier versions wrote beside a video's temporary is a temporary too:
+// a run killed while encoding left it, and it must not block the directory (issue 35, item 6).
+TEST(OutputDir, AKilledEncodersLogIsALeftoverTemporary) {
+  const fs::path dir = fresh("ffmpeg_log");
+  OutputDir::for_run(dir, "test").write_text("summary.json", "{}\n");
+  touch(dir / "jellyfish.mp4.tmp-4242-2x9kq0f3");
+  touch(dir / "jellyfish.mp4.tmp-4242-2x9kq0f3.ffmpeg-log");
+  touch(dir / "jellyfish.mp4.tmp-4242.ffmpeg-log");
+  EXPECT_NO_THROW(OutputDir::for_resumed_run(dir, "test"));
+  EXPECT_FALSE(fs::exists(dir / "jellyfish.mp4.tmp-4242-2x9kq0f3.ffmpeg-log"));
+  touch(dir / "jellyfish.mp4.tmp-4242-2x9kq0f3.ffmpeg-log");
+  EXPECT_NO_THROW(OutputDir::for_run(dir, "test"));
+  EXPECT_TRUE(fs::is_empty(dir) || fs::exists(dir / kManifestName));
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename(), kManifestName) << e.path();
+  touch(dir / "notes.ffmpeg-log");  // not a temporary of ours
+  EXPECT_THROW(OutputDir::for_run(dir, "test"), InputError);
+  fs::remove_all(dir);
+}
+
+// The reason given is that of the call that failed: a rename refused (the target is a directory)
+// is not reported as the "Success" of the clean-up after it (issue 35, item 12).
+TEST(SafeFiles, AFailedRenameReportsItsOwnReason) {
+  const fs::path dir = fresh("rename_reason");
+  fs::create_directories(dir / "summary.json" / "inside");
+  for (int k = 0; k < 2; ++k) {
+    try {
+      if (k == 0) write_file_atomically(dir / "summary.json", "{}");
+      else OutputDir(dir).write_text("summary.json", "{}");
+      FAIL() << "a file replaced a directory";
+    } catch (const RunError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find(os_reason(0)), std::string::npos) << what;
+      EXPECT_TRUE(what.find(os_reason(EISDIR)) != std::string::npos ||
+                  what.find(os_reason(ENOTEMPTY)) != std::string::npos || what.find(os_reason(EEXIST)) != std::string::npos)
+          << what;
+    }
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // no temporary left
+  fs::remove_all(dir);
 }
 
 }  // namespace

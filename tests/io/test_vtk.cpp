@@ -149,5 +149,22 @@ TEST(Vtk, AFullDiskIsReportedWithThePathAndTheReason) {
   }
 }
 
+// A file larger than the stream's buffer: the write that fails is inside the data, not the last
+// flush, and its reason (ENOSPC) is the one reported (issue 35, item 12: "Input/output error").
+TEST(Vtk, AFullDiskDuringALargeFileIsReportedAsNoSpace) {
+  VtkPolyData d;
+  std::uint64_t x = 88172645463325252ull;  // xorshift: values zlib cannot shrink
+  for (int k = 0; k < 20000; ++k) {
+    x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+    d.points_m.push_back({static_cast<double>(x % 1000003) * 1e-6, static_cast<double>(x % 999983) * 1e-6});
+  }
+  try {
+    write_polydata_vtp(std::filesystem::path("/dev/full"), d);
+    FAIL() << "writing to /dev/full succeeded";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find(os_reason(ENOSPC)), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace jellysim::io

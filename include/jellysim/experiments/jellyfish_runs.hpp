@@ -50,11 +50,15 @@ struct Checkpointing {
   /// knows how large this configuration's state can be, after checking that the files the scene
   /// read then (how.inputs) are the ones it reads now.
   bool resume = false;
+  /// A whole simulation leaves a checkpoint of its end (`jellysim run`: the render stage follows,
+  /// and a run stopped there resumes from it); the caller removes it once its outputs are whole.
+  bool keep_when_whole = false;
 };
 
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/). With
 /// `checkpoints` (and `out`), writes checkpoints, or continues from one: the outputs are those of
-/// the uninterrupted run, byte for byte. A completed run removes its checkpoint.
+/// the uninterrupted run, byte for byte. A completed run removes its checkpoint (or, with
+/// keep_when_whole, replaces it with one of its end).
 SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
                        const io::OutputDir* out, const sim::ProgressCallback& progress,
                        const Checkpointing* checkpoints = nullptr);

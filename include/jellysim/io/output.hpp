@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,7 @@
 namespace jellysim::io {
 
 class RunManifest;
+class PendingFile;
 
 /// A new file made exclusively beside `target` (TARGET.tmp-PID-RANDOM, O_CREAT|O_EXCL|O_NOFOLLOW:
 /// never an existing file or a planted symlink) and its open descriptor, for writing.
@@ -23,11 +25,13 @@ struct TemporaryFile {
 TemporaryFile create_temporary_beside(const std::filesystem::path& target);
 /// Writes all of `content` to `fd`; a failure throws RunError naming `shown` and the OS reason.
 void write_all(int fd, std::string_view content, const std::filesystem::path& shown);
-/// fsync of a written file (errors name `shown` and the OS reason).
-void sync_file(const std::filesystem::path& path, const std::filesystem::path& shown);
 /// Writes `target` through an exclusive temporary beside it, fsync, then rename: a reader sees
 /// the old file or the whole new one; errors name the target and the OS reason.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+/// Writes `content` to `path`, created or truncated in place, never through a symlink there
+/// (O_NOFOLLOW): the path writers of single files (a results directory writes atomically instead);
+/// errors name the path and the reason of the call that failed.
+void write_file(const std::filesystem::path& path, std::string_view content);
 /// The operating system's text for an errno value (thread-safe).
 std::string os_reason(int error_number);
 /// The whole content of `path`, which must be a regular file of at most `max_bytes` (checked with
@@ -83,14 +87,15 @@ class OutputDir {
   /// Removes the file `name` (one of this run's) and its line in the manifest.
   void remove(std::string_view name) const;
 
-  /// For writers that need a path (e.g. image libraries): creates an empty temporary file next to
-  /// `name` exclusively (create_temporary_beside) and returns its path; commit() syncs it and
-  /// moves it into place. A temporary that is not committed keeps its ".tmp-" name, which no
-  /// reader takes for a result, and the next run into the directory removes it.
-  std::filesystem::path temporary_for(std::string_view name) const;
-  void commit(const std::filesystem::path& temporary, std::string_view name) const;
+  /// For writers that fill a file through a descriptor (ffmpeg): a new file made exclusively next
+  /// to `name` (create_temporary_beside), open for writing. Write through its descriptor, never
+  /// reopen it by name; PendingFile::commit() moves it into place. One that is not committed is
+  /// removed; one a killed run left keeps its ".tmp-" name, which no reader takes for a result,
+  /// and the next run into the directory removes it.
+  PendingFile temporary_for(std::string_view name) const;
 
  private:
+  friend class PendingFile;
   std::filesystem::path dir_;
   std::shared_ptr<RunManifest> manifest_;  ///< null for a plain directory
   std::shared_ptr<DirectoryLock> lock_;    ///< held while any copy lives (null for a plain directory)
@@ -102,19 +107,36 @@ inline constexpr std::string_view kManifestName = "manifest.txt";
 /// The run id in DIR/manifest.txt's first line ("" when there is none: a whole run's, or no manifest).
 std::string manifest_run_id(const std::filesystem::path& dir);
 
-/// Writes `name` atomically through a writer that needs a path (image and VTK libraries):
-/// writer(temporary path), then the temporary is renamed into place.
+/// A file of an OutputDir being written through its descriptor (OutputDir::temporary_for).
+class PendingFile {
+ public:
+  PendingFile(PendingFile&& other) noexcept;
+  PendingFile& operator=(PendingFile&&) = delete;
+  ~PendingFile();  ///< an uncommitted file is closed and removed
+
+  int fd() const { return file_.fd; }
+  const std::filesystem::path& path() const { return file_.path; }
+  /// Syncs the file through its descriptor, closes it, lists it in the run's manifest and renames
+  /// it into place. Throws RunError (the file removed) when a call fails, or when something else
+  /// took the temporary's name meanwhile (nothing is moved into place then).
+  void commit();
+
+ private:
+  friend class OutputDir;
+  PendingFile(OutputDir dir, std::string name, TemporaryFile file)
+      : dir_(std::move(dir)), name_(std::move(name)), file_(std::move(file)) {}
+  OutputDir dir_;
+  std::string name_;
+  TemporaryFile file_;
+};
+
+/// Writes `name` of `out` atomically from a writer that streams it (`writer(std::ostream&)`, e.g.
+/// the VTK writers); nothing is written when the writer throws.
 template <class Writer>
-void write_via_temporary(const OutputDir& out, const std::string& name, Writer&& writer) {
-  const auto tmp = out.temporary_for(name);
-  try {
-    writer(tmp);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);  // a failed write leaves nothing behind
-    throw;
-  }
-  out.commit(tmp, name);
+void write_streamed(const OutputDir& out, std::string_view name, Writer&& writer) {
+  std::ostringstream bytes;
+  writer(static_cast<std::ostream&>(bytes));
+  out.write_text(name, bytes.view());
 }
 
 /// Builds a CSV file row by row with a fixed header; numbers use the shortest text that reads back

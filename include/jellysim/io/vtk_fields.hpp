@@ -4,8 +4,9 @@
 // ties the frames into a time series with named parts (the flow's fields in single precision,
 // the points' positions and data in double). Arrays are raw binary in the file's
 // appended section, zlib-compressed (vtkZLibDataCompressor, 32 KiB blocks), so a frame takes a
-// fraction of the ASCII file's space and time. Writers take a stream or a path; writing atomically
-// (temp file + rename) is the caller's job.
+// fraction of the ASCII file's space and time. Writers take a stream or a path (io::write_file:
+// written in place, never through a symlink); into a results directory, write atomically
+// through the stream (io::write_streamed).
 #include <array>
 #include <filesystem>
 #include <iosfwd>
@@ -46,6 +47,7 @@ void write_polydata_vtp(std::ostream& out, const VtkPolyData& data);
 void write_polydata_vtp(const std::filesystem::path& path, const VtkPolyData& data);
 
 /// Points (z = 0) as vertices with an `id` array (their index).
+void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m);
 void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m);
 
 /// One dataset of a time series: simulated time, the file name relative to the .pvd file, and

@@ -39,9 +39,11 @@ struct FieldPictureOptions {
 /// One picture of one flow, drawn by our own rasteriser (render/image.hpp): the per-frame pictures
 /// of a run, where PLplot's per-picture font set-up (pango, fontconfig) took most of the time.
 RgbImage draw_field_picture(const FieldPicture& picture, const FieldPictureOptions& options);
-void write_field_png(const FieldPicture& picture, const FieldPictureOptions& options,
-                     const std::filesystem::path& png_path);
-/// Several flows side by side, `columns` per row (e.g. thesis Figure 8.7).
+/// draw_field_picture as the bytes of a PNG file.
+std::string field_png(const FieldPicture& picture, const FieldPictureOptions& options);
+/// Several flows side by side, `columns` per row (e.g. thesis Figure 8.7), as the bytes of a PNG
+/// file (field_panels_png) or written to one (io::write_file).
+std::string field_panels_png(const std::vector<FieldPicture>& panels, int columns, const FieldPictureOptions& options);
 void write_field_panels_png(const std::vector<FieldPicture>& panels, int columns,
                             const FieldPictureOptions& options, const std::filesystem::path& png_path);
 

@@ -25,7 +25,9 @@ struct RgbImage {
   void blend(int x, int y, Rgb c, double a);
 };
 
-/// Writes a PNG (libpng); throws RunError when it cannot.
+/// The bytes of a PNG file of the image (libpng); throws RunError when libpng fails.
+std::string png_bytes(const RgbImage& image);
+/// Writes png_bytes to a file (io::write_file); throws RunError when it cannot.
 void write_png(const RgbImage& image, const std::filesystem::path& path);
 /// Reads an 8-bit RGB(A) PNG (alpha dropped); throws InputError for an unreadable file.
 RgbImage read_png(const std::filesystem::path& path);

@@ -39,7 +39,9 @@ struct AxisUnit {
 };
 AxisUnit fitting_unit(const std::string& si_unit, double max_abs);
 
-/// Writes a line/scatter chart with axes, labels and a legend to a PNG file.
+/// A line/scatter chart with axes, labels and a legend, as the bytes of a PNG file.
+std::string chart_png(const ChartSpec& chart);
+/// Writes chart_png to a file (io::write_file).
 void write_chart_png(const ChartSpec& chart, const std::filesystem::path& png_path);
 
 /// One panel of a strip of 2D drawings (e.g. frames of an animation).
@@ -51,8 +53,8 @@ struct Drawing {
 };
 
 /// Draws panels side by side (`columns` per row) with a common, equal-aspect view box that contains
-/// every panel's content, and writes a PNG file.
-void write_drawing_strip_png(const std::vector<Drawing>& panels, int columns, const std::string& title,
-                             const std::filesystem::path& png_path, int panel_px = 320);
+/// every panel's content: the bytes of a PNG file.
+std::string drawing_strip_png(const std::vector<Drawing>& panels, int columns, const std::string& title,
+                              int panel_px = 320);
 
 }  // namespace jellysim::render
