@@ -51,10 +51,9 @@ std::string png_bytes(const RgbImage& image) {
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
-  // Twice: the first call measures, the second encodes into a buffer of that size.
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), image.width * 3, nullptr))
-    throw RunError(std::string("cannot encode a PNG: ") + png.message);
+  // Once, into a buffer of libpng's bound: asking for the size first would encode twice. (Its
+  // PNG_IMAGE_FLAG_FAST saved 1 ms of a frame's 17 and made the frames 40 % larger: not taken.)
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::string bytes(size, '\0');
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), image.width * 3, nullptr))
     throw RunError(std::string("cannot encode a PNG: ") + png.message);
