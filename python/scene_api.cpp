@@ -195,7 +195,7 @@ py::dict run_experiment(const std::string& name, const py::object& out, const py
   experiments::Outcome outcome;
   {
     py::gil_scoped_release released;
-    outcome = run(dir);
+    outcome = experiments::run_guarded(e, ctx, run, dir);
     dir.finish_manifest();
   }
   py::dict summary = read_summary(dir.path());

@@ -67,12 +67,30 @@ std::string toml_string(const std::string& text) {
   return quoted + "\"";
 }
 
+/// CLI::Range, which lets NaN through (`--checkpoint-every nan` never checkpointed): a number in
+/// [lo, hi].
+CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t end = 0;
+        try {
+          value = std::stod(text, &end);
+        } catch (const std::exception&) {
+          end = 0;
+        }
+        if (end == text.size() && value >= lo && value <= hi) return {};
+        return "'" + text + "' is not a number in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]";
+      },
+      "NUMBER in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]", "finite range");
+}
+
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
 void add_memory_limit_option(CLI::App& cmd) {
   cmd.add_option_function<std::string>(
          "--memory-limit",
          [](const std::string& size) { js::core::set_memory_budget_bytes(js::core::parse_byte_size(size)); },
-         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's); a run estimated to need more "
+         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's, or less where ulimit or the cgroup leave less); a run estimated to need more "
          "is refused before it starts")
       ->type_name("SIZE")
       ->check(CLI::Validator(
@@ -158,7 +176,7 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
   js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM stops at a step boundary
-  const js::experiments::Outcome outcome = run(out);
+  const js::experiments::Outcome outcome = js::experiments::run_guarded(e, ctx, run, out);
   out.finish_manifest();
   const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
   const std::string resume_hint =
@@ -446,7 +464,7 @@ int main(int argc, char** argv) {
                            "Write the whole state to OUT/checkpoint.jellysim at the first frame after every S simulated "
                            "seconds, (0, 1e9]; a killed run continues with --resume OUT (removed when the run completes)")
           ->type_name("S")
-          ->check(CLI::Range(1e-9, 1e9));
+          ->check(finite_range(1e-9, 1e9));
   simulate->add_option("--resume", resume_dir,
                        "Continue the run whose checkpoint is in DIR, into DIR, as it was configured (no scene, --set, "
                        "--duration or --out): the outputs are those of the uninterrupted run, byte for byte")

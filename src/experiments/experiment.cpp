@@ -1,6 +1,7 @@
 #include "jellysim/experiments/experiment.hpp"
 
 #include "jellysim/core/interrupt.hpp"
+#include "jellysim/core/memory.hpp"
 
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
@@ -94,6 +95,18 @@ void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timin
   t["units"] = {{"time", "s"}};
   for (const auto& [key, value] : timings.items()) t[key] = value;
   out.write_json("timings.json", t);
+}
+
+Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function<Outcome(const io::OutputDir&)>& run,
+                    const io::OutputDir& out) {
+  try {
+    return run(out);
+  } catch (const std::bad_alloc&) {
+    const std::string failure = core::out_of_memory_message();
+    const std::string command = e.name == "jellyfish" ? "simulate" : e.name == "animation" ? "run" : "experiment " + e.name;
+    write_summary(out, command, ctx.config, nlohmann::ordered_json::object(), failure);
+    return {failure};
+  }
 }
 
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
