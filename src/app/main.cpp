@@ -605,6 +605,9 @@ int main(int argc, char** argv) {
   } catch (const js::InputError& e) {
     std::cerr << "jellysim: error: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {  // before the run's own guard (experiments::run_guarded)
+    std::cerr << "jellysim: run failed: " << js::core::out_of_memory_message() << "\n";
+    return kExitFailedRun;
   } catch (const std::exception& e) {
     std::cerr << "jellysim: run failed: " << e.what() << "\n";
     return kExitFailedRun;
