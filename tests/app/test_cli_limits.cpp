@@ -110,8 +110,8 @@ TEST(CliLimits, RefusedSizesAndFactorsNameTheirField) {
     EXPECT_NE(r.output.find(named), std::string::npos) << args << "\n" << r.output;
     EXPECT_FALSE(fs::exists(dir)) << args;
   }
-  const cli::CliResult r = cli::run_jellysim("simulate --out " + dir.string() + kLean + cli::kPreviewGrid + thesis +
-                                             " --set jellyfish.muscle_modulus=0");
+  const cli::CliResult r = cli::run_jellysim("simulate --out " + dir.string() + kLean + thesis +
+                                             " --set 'tank.cells=[48, 96]' --set jellyfish.muscle_modulus=0");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   fs::remove_all(dir);
 }
