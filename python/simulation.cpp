@@ -90,11 +90,14 @@ bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
   // The durations asked for add up (advance(0.5) twice ends where advance(1.0) does), counted from
   // the time reached when step() went beyond them.
   const double requested = std::max(requested_s_, sim_->time_s()) + seconds;
+  const double interval = scene_.settings.frame_interval_s;
+  if (!(requested / interval <= 4503599627370496.0))  // 2^52 frames: FrameClock's limit
+    throw InputError("advance: " + std::to_string(requested) + " s in all is more than 2^52 frames of " +
+                     std::to_string(interval) + " s");
   requested_s_ = requested;
   // The frame nearest the total asked for, at its whole-frame time: every split of the same total
   // ends on the same frame, on simulate's clock (frame n at n·interval). When that frame is
   // recorded already (advance(0), advance(0.01) with 1/30 s frames) there is nothing to do.
-  const double interval = scene_.settings.frame_interval_s;
   const auto last = static_cast<std::int64_t>(std::llround(requested / interval));
   if (last < frames_emitted_) return true;
   const double duration = static_cast<double>(last) * interval;

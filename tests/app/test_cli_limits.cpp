@@ -5,11 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "../cli_runner.hpp"
+#include "jellysim/core/errors.hpp"
+#include "jellysim/core/memory.hpp"
+#include "jellysim/experiments/experiment.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define JELLYSIM_LIMITS_ASAN 1
@@ -141,6 +146,34 @@ TEST(CliLimits, Ib2dStructuresOfPointsAloneRunAndFarOffsetsAreRefused) {
   EXPECT_NE(r.output.find("its field 'offset'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(work / "far"));
   fs::remove_all(work);
+}
+
+// Items 7 and 8: a run that throws after it started (an output that cannot be drawn or written,
+// an allocation that fails) keeps a summary.json saying so, the failed allocation by its stage.
+TEST(CliLimits, RunsThatThrowKeepASummaryWithTheirFailure) {
+  namespace ex = jellysim::experiments;
+  const ex::Experiment& e = ex::find_experiment("jellyfish");
+  const ex::Context ctx{ex::default_config(e), {}};
+  const fs::path dir = cli::fresh_scratch_dir("limits_guarded");
+  const std::vector<std::pair<std::function<ex::Outcome(const jellysim::io::OutputDir&)>, std::string>> cases{
+      {[](const jellysim::io::OutputDir&) -> ex::Outcome { throw jellysim::RunError("cannot write 'x.png'"); },
+       "cannot write 'x.png'"},
+      {[](const jellysim::io::OutputDir&) -> ex::Outcome {
+         const jellysim::core::MemoryStage stage("drawing frame 7");
+         throw std::bad_alloc();
+       },
+       "out of memory (std::bad_alloc) while drawing frame 7"},
+  };
+  for (const auto& [run, failure] : cases) {
+    const jellysim::io::OutputDir out = jellysim::io::OutputDir::for_run(dir, "simulate");
+    const ex::Outcome outcome = ex::run_guarded(e, ctx, run, out);
+    EXPECT_NE(outcome.failure.find(failure), std::string::npos) << outcome.failure;
+    const nlohmann::json summary = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+    EXPECT_EQ(summary["status"], "failed");
+    EXPECT_EQ(summary["failure"], outcome.failure);
+    out.finish_manifest();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -63,8 +63,9 @@ std::string definition_text(std::string_view path);
 /// command is byte-identical for the same inputs.
 void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timings);
 
-/// Runs `run` into `out`; an allocation that fails (std::bad_alloc) anywhere in it becomes the
-/// run's failure, saying in which stage (core::MemoryStage), with summary.json written (issue 35).
+/// Runs `run` into `out`; an allocation that fails (std::bad_alloc) anywhere in it, or a RunError
+/// it throws (an output that could not be written), becomes the run's failure, the first saying in
+/// which stage (core::MemoryStage), with summary.json written (status "failed"; issue 35).
 Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function<Outcome(const io::OutputDir&)>& run,
                     const io::OutputDir& out);
 
