@@ -90,8 +90,8 @@ void add_memory_limit_option(CLI::App& cmd) {
   cmd.add_option_function<std::string>(
          "--memory-limit",
          [](const std::string& size) { js::core::set_memory_budget_bytes(js::core::parse_byte_size(size)); },
-         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's, or less where ulimit or the cgroup leave less); a run estimated to need more "
-         "is refused before it starts")
+         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's, or less where ulimit or the "
+         "cgroup leave less); a run estimated to need more is refused before it starts")
       ->type_name("SIZE")
       ->check(CLI::Validator(
           [](std::string& size) -> std::string {

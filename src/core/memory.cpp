@@ -108,6 +108,7 @@ thread_local std::string t_failed_stage;
 }  // namespace
 
 MemoryStage::MemoryStage(std::string what) : exceptions_(std::uncaught_exceptions()) {
+  if (t_stages.empty()) t_failed_stage.clear();  // a stage an earlier, handled exception left
   t_stages.push_back(std::move(what));
 }
 

@@ -174,8 +174,8 @@ EarlierRun scan_earlier_run(const fs::path& dir, std::string_view option) {
   run.outputs = earlier_outputs(dir / kManifestName);
   std::vector<std::string> foreign;
   std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && foreign.empty() && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && foreign.empty() && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     const std::string relative = it->path().lexically_relative(dir).generic_string();
     std::error_code kind;
     if (it->is_directory(kind) && !it->is_symlink(kind)) {

@@ -562,7 +562,8 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
   if (!(e.bytes <= static_cast<double>(budget.bytes)))
     throw InputError("the run would need about " + core::format_bytes(e.bytes) + " of memory (" + e.breakdown +
                      "), more than the budget of " + core::format_bytes(static_cast<double>(budget.bytes)) + " (" +
-                     budget.source + "; --memory-limit sets it): coarsen tank.cells, raise "
+                     budget.source + (budget.source == "--memory-limit" ? "" : "; --memory-limit sets it") +
+                     "): coarsen tank.cells, raise "
                      "jellyfish.spacing, record fewer frames (output.frame_interval) or raise --memory-limit");
 }
 
