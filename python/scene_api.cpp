@@ -3,8 +3,9 @@
 
 #include <pybind11/eval.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
@@ -34,25 +35,67 @@ class RunError(RuntimeError):
         self.summary = summary
 )";
 
-/// The first capture of `pattern` in `text`, or None.
-py::object capture(const std::string& text, const std::regex& pattern) {
-  std::smatch m;
-  if (std::regex_search(text, m, pattern)) return py::str(m[1].str());
+// The fields and ranges are found by plain string searching: std::regex recurses once per character
+// in libstdc++ and overflows the stack on a message quoting a long key or value (issue 35, item 2).
+
+/// The run of characters from `from` up to (not including) any of `stops`, or None when empty.
+py::object run_until(const std::string& text, std::size_t from, const char* stops) {
+  const std::size_t end = std::min(text.find_first_of(stops, from), text.size());
+  return end > from ? py::object(py::str(text.substr(from, end - from))) : py::object(py::none());
+}
+
+/// The first non-empty quoted name after "field '": "field 'KEY'".
+py::object quoted_field(const std::string& message) {
+  for (std::size_t at = message.find("field '"); at != std::string::npos; at = message.find("field '", at + 1)) {
+    const std::size_t from = at + 7, end = message.find('\'', from);
+    if (end != std::string::npos && end > from) return py::str(message.substr(from, end - from));
+  }
+  return py::none();
+}
+
+/// The key after "--set ": "--set 'KEY=..." or "--set KEY=...".
+py::object set_key(const std::string& message) {
+  for (std::size_t at = message.find("--set "); at != std::string::npos; at = message.find("--set ", at + 1)) {
+    std::size_t from = at + 6;
+    if (from < message.size() && message[from] == '\'') ++from;
+    if (py::object key = run_until(message, from, "'=: "); !key.is_none()) return key;
+  }
   return py::none();
 }
 
 /// The field an InputError names: "field 'KEY'" or "--set 'KEY=..." / "--set KEY=...".
 py::object field_of(const std::string& message) {
-  static const std::regex field(R"(field '([^']+)')"), set(R"(--set '?([^'=: ]+))");
-  py::object f = capture(message, field);
-  return f.is_none() ? capture(message, set) : f;
+  py::object f = quoted_field(message);
+  return f.is_none() ? set_key(message) : f;
+}
+
+/// An interval "[a, b]" / "(a, b)" starting at `from` (brackets without ] or ) inside), or None.
+py::object interval_at(const std::string& text, std::size_t from) {
+  if (from >= text.size() || (text[from] != '[' && text[from] != '(')) return py::none();
+  const std::size_t end = text.find_first_of("])", from + 1);
+  return end == std::string::npos ? py::object(py::none()) : py::object(py::str(text.substr(from, end + 1 - from)));
+}
+
+bool word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+
+/// The first interval after the word "range" or "in" and a space: "range [a, b]", "in (a, b)".
+py::object interval_of(const std::string& message) {
+  for (std::size_t at = 0; at < message.size(); ++at) {
+    if (at > 0 && word_char(message[at - 1])) continue;
+    for (const std::string word : {"range ", "in "})
+      if (message.compare(at, word.size(), word) == 0)
+        if (py::object r = interval_at(message, at + word.size()); !r.is_none()) return r;
+  }
+  return py::none();
 }
 
 /// The allowed range an InputError gives: "range [a, b]", "in (a, b)", or "not one of: a, b".
 py::object range_of(const std::string& message) {
-  static const std::regex interval(R"(\b(?:range|in) ([\[(][^\])]*[\])]))"), choices(R"(not one of: (.*)$)");
-  py::object r = capture(message, interval);
-  return r.is_none() ? capture(message, choices) : r;
+  py::object r = interval_of(message);
+  if (!r.is_none()) return r;
+  const std::size_t last_line = message.rfind('\n');
+  const std::size_t at = message.find("not one of: ", last_line == std::string::npos ? 0 : last_line + 1);
+  return at == std::string::npos ? py::object(py::none()) : py::object(py::str(message.substr(at + 12)));
 }
 
 /// TOML text of an override value as typed after --set key= (strings as they are at the top level,
@@ -152,7 +195,7 @@ py::dict run_experiment(const std::string& name, const py::object& out, const py
   experiments::Outcome outcome;
   {
     py::gil_scoped_release released;
-    outcome = run(dir);
+    outcome = experiments::run_guarded(e, ctx, run, dir);
     dir.finish_manifest();
   }
   py::dict summary = read_summary(dir.path());

@@ -70,7 +70,7 @@ std::string Simulation::step_toward(double frame_time) {
   const jellyfish::SwimStep s = sim_->step_toward(frame_time);  // SwimSimulation::run's steps
   if (s.failure.empty()) return {};
   // As run(): the state that failed is kept as a last frame when a step was taken.
-  if (s.dt_s >= scene_.settings.coupling.min_time_step_s && sim_->jellyfish_count() > 0)
+  if (s.dt_s >= scene_.settings.coupling.min_time_step_s && sim_->jellyfish_count() > 0 && sim_->finite_state())
     frames_.push_back(sim_->jellyfish().slice_frame(sim_->time_s()));
   failure_ = s.failure;
   return failure_;
@@ -89,11 +89,19 @@ bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
   if (!failure_.empty()) throw RunError(failure_);
   // The durations asked for add up (advance(0.5) twice ends where advance(1.0) does), counted from
   // the time reached when step() went beyond them.
-  const double duration = std::max(requested_s_, sim_->time_s()) + seconds;
-  requested_s_ = duration;
-  // simulate's clock for a run of this duration, with the frames already recorded.
-  sim::FrameClock clock(scene_.settings.frame_interval_s, duration, frame_tolerance(duration),
-                        sim::FrameClock::Ending::nearest_frame);
+  const double requested = std::max(requested_s_, sim_->time_s()) + seconds;
+  const double interval = scene_.settings.frame_interval_s;
+  if (!(requested / interval <= 4503599627370496.0))  // 2^52 frames: FrameClock's limit
+    throw InputError("advance: " + std::to_string(requested) + " s in all is more than 2^52 frames of " +
+                     std::to_string(interval) + " s");
+  requested_s_ = requested;
+  // The frame nearest the total asked for, at its whole-frame time: every split of the same total
+  // ends on the same frame, on simulate's clock (frame n at n·interval). When that frame is
+  // recorded already (advance(0), advance(0.01) with 1/30 s frames) there is nothing to do.
+  const auto last = static_cast<std::int64_t>(std::llround(requested / interval));
+  if (last < frames_emitted_) return true;
+  const double duration = static_cast<double>(last) * interval;
+  sim::FrameClock clock(interval, duration, frame_tolerance(duration), sim::FrameClock::Ending::nearest_frame);
   for (std::int64_t k = 0; k < frames_emitted_; ++k) clock.frame_emitted();
   sim::ClockedRun loop;
   loop.time = [this] { return sim_->time_s(); };

@@ -66,3 +66,18 @@ def test_two_halves_take_the_steps_of_one_advance(cheap_scene, advanced):
     sim.advance(0.5)
     assert sim.steps == advanced.steps
     assert np.array_equal(sim.markers(), advanced.markers())
+
+
+def test_any_split_ends_on_the_frames_of_one_advance(cheap_scene, advanced):
+    """Issue 35: advance(0) recorded a second frame at t = 0 (and lost the 1/30 s one), and
+    advance(0.01) stepped to t = 0.01, off the frame clock. A total rounds to its nearest frame
+    whatever the split: 0 + 0.01 + 1.0 ends on the frame at 1.0 s as advance(1.0) does."""
+    sim = jellysim.Simulation(cheap_scene)
+    sim.advance(0)
+    assert sim.frame_count == 1 and sim.steps == 0
+    sim.advance(0.01)
+    assert sim.frame_count == 1 and sim.steps == 0
+    sim.advance(1.0)
+    assert sim.steps == advanced.steps
+    assert np.array_equal(sim.metrics()["t"], advanced.metrics()["t"])
+    assert np.array_equal(sim.markers(), advanced.markers())

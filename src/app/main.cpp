@@ -68,13 +68,31 @@ std::string toml_string(const std::string& text) {
   return quoted + "\"";
 }
 
+/// CLI::Range, which lets NaN through (`--checkpoint-every nan` never checkpointed): a number in
+/// [lo, hi].
+CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t end = 0;
+        try {
+          value = std::stod(text, &end);
+        } catch (const std::exception&) {
+          end = 0;
+        }
+        if (end == text.size() && value >= lo && value <= hi) return {};
+        return "'" + text + "' is not a number in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]";
+      },
+      "NUMBER in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]", "finite range");
+}
+
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
 void add_memory_limit_option(CLI::App& cmd) {
   cmd.add_option_function<std::string>(
          "--memory-limit",
          [](const std::string& size) { js::core::set_memory_budget_bytes(js::core::parse_byte_size(size)); },
-         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's); a run estimated to need more "
-         "is refused before it starts")
+         "Memory the run may use, e.g. 4G or 512M (default: half of this machine's, or less where ulimit or the "
+         "cgroup leave less); a run estimated to need more is refused before it starts")
       ->type_name("SIZE")
       ->check(CLI::Validator(
           [](std::string& size) -> std::string {
@@ -126,7 +144,7 @@ void add_checkpoint_options(CLI::App& cmd, CheckpointOptions& c, const std::stri
                                "simulated seconds, (0, 1e9]; a killed run continues with --resume OUT (removed when "
                                "the run completes)" + more)
                     ->type_name("S")
-                    ->check(CLI::Range(1e-9, 1e9));
+                    ->check(finite_range(1e-9, 1e9));
   cmd.add_option("--resume", c.resume_dir,
                  "Continue the run whose checkpoint is in DIR, into DIR, as it was configured (no scene, --set, "
                  "--duration or --out): the outputs are those of the uninterrupted run, byte for byte")
@@ -183,7 +201,7 @@ int run_experiment(const js::experiments::Experiment& e, const std::optional<js:
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
   js::core::install_interrupt_handlers();  // from here a first SIGINT/SIGTERM/SIGHUP stops at a step boundary
-  const js::experiments::Outcome outcome = run(out);
+  const js::experiments::Outcome outcome = js::experiments::run_guarded(e, ctx, run, out);
   const bool resumable = o.checkpoints && std::filesystem::exists(out.file(js::io::kCheckpointName));
   out.finish_manifest(resumable);  // a resumable run keeps its id, which its checkpoint carries
   const std::string resume_hint =
@@ -621,6 +639,9 @@ int main(int argc, char** argv) {
   } catch (const js::InputError& e) {
     std::cerr << "jellysim: error: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {  // before the run's own guard (experiments::run_guarded)
+    std::cerr << "jellysim: run failed: " << js::core::out_of_memory_message() << "\n";
+    return kExitFailedRun;
   } catch (const std::exception& e) {
     std::cerr << "jellysim: run failed: " << e.what() << "\n";
     return kExitFailedRun;

@@ -41,6 +41,19 @@ std::string value_text(const toml::node& node) {
   return s.str();
 }
 
+/// For a list given without brackets (--set jellyfish.position=0.5,0.1 reads as the string
+/// "0.5,0.1"): ": write it as [0.5, 0.1]"; else "".
+std::string array_hint(toml::node_type want, const toml::node& value) {
+  if (want != toml::node_type::array || !value.is_string()) return {};
+  std::string items, item;
+  std::istringstream text(value.as_string()->get());
+  while (std::getline(text, item, ',')) {
+    const std::size_t first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
+    items += (items.empty() ? "" : ", ") + (first == std::string::npos ? "" : item.substr(first, last + 1 - first));
+  }
+  return ": write it as [" + items + "]";
+}
+
 std::string allowed_keys(const toml::table& table) {
   std::string keys;
   for (auto&& [k, v] : table) keys += (keys.empty() ? "" : ", ") + std::string(k.str());
@@ -62,7 +75,7 @@ void assign_checked(toml::table& base, std::string_view key, const toml::node& e
   }
   if (want != got) {
     throw InputError("field '" + path + "' = " + value_text(value) + " has the wrong type: expected " +
-                     type_name(want) + ", got " + type_name(got));
+                     type_name(want) + ", got " + type_name(got) + array_hint(want, value));
   }
   value.visit([&](const auto& v) { base.insert_or_assign(key, v); });
 }

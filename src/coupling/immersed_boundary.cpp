@@ -636,6 +636,11 @@ std::string check_stability(const fluid::FlowState& flow, const elastic::Body& b
   };
   if (std::string p = check_field(flow.velocity.u, "u"); !p.empty()) return p;
   if (std::string p = check_field(flow.velocity.v, "v"); !p.empty()) return p;
+  for (int j = 0; j < flow.pressure.count_y(); ++j)
+    for (int i = 0; i < flow.pressure.count_x(); ++i)
+      if (!std::isfinite(flow.pressure(i, j)))
+        return "numerical instability: the fluid pressure is " + format_number(flow.pressure(i, j)) + " at " +
+               format_vec(flow.pressure.position(i, j));
   const auto& lin = body.linear;
   for (std::size_t s = 0; s < lin.size(); ++s) {
     const double reference = strain_reference ? (*strain_reference)[s] : lin.rest_length[s];

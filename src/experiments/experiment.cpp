@@ -1,6 +1,7 @@
 #include "jellysim/experiments/experiment.hpp"
 
 #include "jellysim/core/interrupt.hpp"
+#include "jellysim/core/memory.hpp"
 
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/core/errors.hpp"
@@ -94,6 +95,37 @@ void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timin
   t["units"] = {{"time", "s"}};
   for (const auto& [key, value] : timings.items()) t[key] = value;
   out.write_json("timings.json", t);
+}
+
+namespace {
+
+/// summary.json of a run that threw `failure` (no key figures); false when it cannot be written
+/// either (the disk that failed the run), so that the run's own error is the one reported.
+bool write_failure_summary(const Experiment& e, const Context& ctx, const io::OutputDir& out,
+                           const std::string& failure) {
+  const std::string command = e.name == "jellyfish" ? "simulate" : e.name == "animation" ? "run" : "experiment " + e.name;
+  try {
+    write_summary(out, command, ctx.config, nlohmann::ordered_json::object(), failure);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function<Outcome(const io::OutputDir&)>& run,
+                    const io::OutputDir& out) {
+  try {
+    return run(out);
+  } catch (const std::bad_alloc&) {
+    const std::string failure = core::out_of_memory_message();
+    write_failure_summary(e, ctx, out, failure);
+    return {failure};
+  } catch (const RunError& error) {  // e.g. an output that could not be drawn or written
+    if (!write_failure_summary(e, ctx, out, error.what())) throw;
+    return {error.what()};
+  }
 }
 
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/memory.hpp"
 #include "jellysim/core/parallel.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/plot.hpp"
@@ -62,7 +63,9 @@ io::VtkPolyData body_data(const jellyfish::SwimSimulation& sim) {
     strain.values.push_back(rest > 0.0 ? length / rest - 1.0 : 0.0);
   }
   d.point_data = {std::move(kind), std::move(velocity), std::move(f)};
-  d.cell_data = {std::move(muscle), std::move(strain)};
+  // Without springs (an IB2d structure of a .vertex file alone) the points are the cells: no
+  // spring arrays then.
+  if (!d.lines.empty()) d.cell_data = {std::move(muscle), std::move(strain)};
   return d;
 }
 
@@ -241,7 +244,7 @@ SwimOutputOptions read_output_options(const io::Config& c) {
   o.picture_every = static_cast<int>(r.integer("output.picture_every"));
   o.quantity = r.choice("output.picture_quantity") == "speed" ? render::FieldQuantity::speed
                                                              : render::FieldQuantity::vorticity;
-  o.zoom_diameters = r.number("output.picture_zoom");
+  o.zoom_diameters = scene::read_picture_zoom(c);
   o.vtk = r.boolean("output.vtk");
   return o;
 }
@@ -305,7 +308,12 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   // default run's time).
   jellyfish::SwimSettings run_settings = settings;
   if (!frame_files && !options.record_tracers) run_settings.tank.tracers_per_side = 0;
-  jellyfish::SwimSimulation sim(run_settings);
+  const auto owner = [&] {
+    const core::MemoryStage building("building the simulation (" + std::to_string(settings.tank.cells_x) + " x " +
+                                     std::to_string(settings.tank.cells_y) + " fluid cells)");
+    return std::make_unique<jellyfish::SwimSimulation>(run_settings);
+  }();
+  jellyfish::SwimSimulation& sim = *owner;
   std::unique_ptr<FrameFiles> files;
   if (frame_files) files = std::make_unique<FrameFiles>(*out, options);
   rec.others.resize(sim.jellyfish_count() > 1 ? sim.jellyfish_count() - 1 : 0);
@@ -361,6 +369,11 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
   const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
   if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
   for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));
+  // A metric that is not finite is a divergence too, even where the state stayed finite.
+  for (std::size_t j = 0; j <= rec.other_metrics.size() && rec.stats.failure.empty(); ++j)
+    if (const std::string problem = jellyfish::non_finite_metric(j == 0 ? rec.metrics : rec.other_metrics[j - 1]);
+        !problem.empty())
+      rec.stats.failure = "numerical instability: " + problem + " for jellyfish " + std::to_string(j + 1);
   return rec;
 }
 
@@ -420,6 +433,13 @@ void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::Met
   };
   auto chart = [&](const std::string& name, const std::string& chart_title, const std::string& quantity,
                    const std::string& unit, std::vector<render::Series> list) {
+    // A run that diverged may leave a quantity with no finite value (its failure says why): no chart.
+    const auto finite = [](const render::Series& s) {
+      for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k)
+        if (std::isfinite(s.x[k]) && std::isfinite(s.y[k])) return true;
+      return false;
+    };
+    if (std::none_of(list.begin(), list.end(), finite)) return;
     render::ChartSpec c;
     c.title = chart_title;
     c.x_label = "t";

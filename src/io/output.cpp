@@ -335,17 +335,18 @@ struct EarlierRun {
 };
 
 /// Sorts the directory's contents into an earlier run's; throws InputError, touching nothing, when
-/// it holds anything else.
+/// it holds anything else (at the first such file: `--out /usr` walks no further) or cannot be read.
 EarlierRun scan_earlier_run(const fs::path& dir, std::string_view option) {
   EarlierRun run;
   run.outputs = earlier_outputs(dir / kManifestName);
   std::vector<std::string> foreign;
   std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && foreign.empty() && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     const std::string relative = it->path().lexically_relative(dir).generic_string();
     if (relative == kLockName) continue;  // the lock of the run that scans (held: lock_directory)
-    if (it->is_directory() && !it->is_symlink()) {
+    std::error_code kind;
+    if (it->is_directory(kind) && !it->is_symlink(kind)) {
       run.folders.push_back(it->path());
     } else if (is_leftover_temporary(it->path().filename().string())) {
       run.temporaries.push_back(it->path());
@@ -355,14 +356,27 @@ EarlierRun scan_earlier_run(const fs::path& dir, std::string_view option) {
       foreign.push_back(relative);
     }
   }
-  if (ec) throw RunError("cannot read output directory '" + dir.string() + "': " + ec.message());
-  if (!foreign.empty()) {
-    std::sort(foreign.begin(), foreign.end());
-    throw InputError(std::string(option) + " '" + dir.string() + "' holds " + std::to_string(foreign.size()) +
-                     " file(s) that no earlier jellysim run there wrote (e.g. '" + foreign.front() +
+  if (!foreign.empty())
+    throw InputError(std::string(option) + " '" + dir.string() + "' holds files that no earlier jellysim run there "
+                     "wrote (e.g. '" + foreign.front() +
                      "'); jellysim does not mix its results with other files: choose a new or empty directory");
-  }
+  if (ec)
+    throw InputError(std::string(option) + " '" + dir.string() + "' cannot be read through (" + ec.message() +
+                     "): choose a new or empty directory");
   return run;
+}
+
+/// Refuses, before anything is read or written, an --out that cannot hold results: a path through a
+/// file, or below a directory this process may not write into.
+void check_out_location(const fs::path& dir) {
+  std::error_code ec;
+  fs::path at = fs::absolute(dir, ec).lexically_normal();
+  while (!fs::exists(at, ec) && at.has_relative_path()) at = at.parent_path();
+  if (!fs::is_directory(at, ec))
+    throw InputError("--out '" + dir.string() + "': '" + at.string() + "' is a file, not a directory");
+  if (::access(at.c_str(), W_OK | X_OK) != 0)
+    throw InputError("--out '" + dir.string() + "': '" + at.string() + "' is not writable (" +
+                     std::generic_category().message(errno) + "): choose a directory you can write to");
 }
 
 /// Removes an earlier run's outputs from `dir`, or throws InputError, touching nothing, when the
@@ -387,6 +401,7 @@ OutputDir OutputDir::for_run(std::filesystem::path dir, std::string_view command
   std::error_code ec;
   if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
     throw InputError("--out '" + dir.string() + "' is a file, not a directory");
+  check_out_location(dir);  // before the lock creates it
   std::shared_ptr<DirectoryLock> lock = lock_directory(dir, "--out");
   clear_earlier_run(dir);
   OutputDir out(std::move(dir));

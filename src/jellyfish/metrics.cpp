@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
 
 namespace jellysim::jellyfish {
 
@@ -89,6 +92,24 @@ std::vector<double> daniel_velocity(const std::vector<double>& t, const std::vec
     u[k + 1] = u[k] + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
   }
   return u;
+}
+
+std::string non_finite_metric(const std::vector<MetricsRow>& rows) {
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const MetricsRow& r = rows[k];
+    const std::pair<const char*, double> values[] = {
+        {"t", r.t}, {"position", r.position}, {"lateral", r.lateral}, {"velocity", r.velocity},
+        {"acceleration", r.acceleration}, {"volume", r.volume}, {"aperture_area", r.aperture_area},
+        {"volume_ratio", r.volume_ratio}, {"aperture_ratio", r.aperture_ratio}, {"thrust", r.thrust},
+        {"daniel_velocity", r.daniel_velocity}, {"daniel_position", r.daniel_position}};
+    for (const auto& [name, value] : values)
+      if (!std::isfinite(value)) {
+        std::ostringstream s;
+        s << "the metric '" << name << "' is not finite (" << value << ") at t = " << r.t << " s (frame " << k << ")";
+        return s.str();
+      }
+  }
+  return {};
 }
 
 std::vector<MetricsRow> compute_metrics(const std::vector<SliceFrame>& frames, const MetricsSettings& s) {

@@ -1,6 +1,7 @@
 #include "jellysim/jellyfish/swim_simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -161,39 +162,68 @@ void validate_geometry(const SwimSettings& settings) {
     refuse("IB2d structures are planar and not supported in axisymmetric tanks");
 }
 
+namespace {
+
+/// A body of the scene as validate_layout checks it.
+struct Shape {
+  std::string name;
+  std::vector<Vec2> polygon;  ///< closed outline
+  std::vector<Vec2> points;   ///< every point that must lie inside the tank
+  std::string remedy;         ///< the fields that move or shrink it
+};
+
+/// The interval a point's coordinate must lie in along a side of length `length`: half a cell from
+/// the walls, or along a periodic direction within one period either side of the tank (the
+/// coupling wraps positions by whole periods: 3e15 m away was a NaN at the first step).
+std::array<double, 2> allowed_span(double length, double margin, bool periodic) {
+  return periodic ? std::array<double, 2>{-length, 2.0 * length} : std::array<double, 2>{margin, length - margin};
+}
+
+void check_inside(const Shape& s, const coupling::TankSpec& t) {
+  const double margin = 0.5 * std::min(t.width_m / t.cells_x, t.height_m / t.cells_y);
+  const auto x = allowed_span(t.width_m, margin, t.boundaries.periodic_x());
+  const auto y = allowed_span(t.height_m, margin, t.boundaries.periodic_y());
+  for (Vec2 p : s.points)
+    if (!(p.x >= x[0] && p.x <= x[1] && p.y >= y[0] && p.y <= y[1])) {
+      std::ostringstream m;
+      m.precision(6);
+      m << s.name << " reaches outside the tank: point (" << p.x << ", " << p.y << ") m is not inside [" << x[0]
+        << ", " << x[1] << "] x [" << y[0] << ", " << y[1]
+        << "] m (half a cell from the walls; along a periodic side, one tank length beyond it): " << s.remedy
+        << ", or enlarge the tank (tank.width, tank.height)";
+      throw std::invalid_argument(m.str());
+    }
+}
+
+/// How to move or shrink jellyfish `k` (the first may be [jellyfish], the others are [[objects]]).
+std::string jellyfish_remedy(std::size_t k) {
+  const std::string where = k == 0 ? "field 'jellyfish.position' (or its [[objects]] table's 'position')"
+                                   : "the 'position' of its [[objects]] table";
+  return "move it (" + where + ") or make it smaller (diameter, height, tentacle_length)";
+}
+
+}  // namespace
+
 void validate_layout(const SwimSettings& settings) {
   validate_geometry(settings);
-  const coupling::TankSpec& t = settings.tank;
-  struct Shape {
-    std::string name;
-    std::vector<Vec2> polygon;  ///< closed outline
-    std::vector<Vec2> points;   ///< every point that must lie inside the tank
-  };
   std::vector<Shape> shapes;
   for (std::size_t k = 0; k < settings.school.size(); ++k) {
     const Jellyfish j(settings.school[k]);
-    Shape s{"jellyfish " + std::to_string(k + 1), jellyfish_outline(j), j.body().points.position};
-    shapes.push_back(std::move(s));
+    shapes.push_back({"jellyfish " + std::to_string(k + 1), jellyfish_outline(j), j.body().points.position,
+                      jellyfish_remedy(k)});
   }
   for (const ObstacleSpec& o : settings.obstacles) {
     validate(o);
     std::vector<Vec2> outline = obstacle_outline(o);
-    shapes.push_back({o.name, outline, outline});
+    shapes.push_back({o.name, outline, outline, "move it (its 'centre' or 'points') or make it smaller"});
   }
   for (const Ib2dObjectSpec& st : settings.structures) {
     std::vector<Vec2> points;
     for (Vec2 v : st.structure.vertices) points.push_back(v + st.offset_m);
-    shapes.push_back({st.name, {}, points});  // no outline: IB2d structures are not checked for overlap
+    // No outline: IB2d structures are not checked for overlap.
+    shapes.push_back({st.name, {}, points, "move it (its field 'offset') or check its .vertex file's coordinates"});
   }
-  const double margin = 0.5 * std::min(t.width_m / t.cells_x, t.height_m / t.cells_y);
-  for (const Shape& s : shapes)
-    for (Vec2 p : s.points)
-      if (!((t.boundaries.periodic_x() || (p.x >= margin && p.x <= t.width_m - margin)) &&
-            (t.boundaries.periodic_y() || (p.y >= margin && p.y <= t.height_m - margin))))
-        throw std::invalid_argument(s.name + " reaches outside the tank: point (" + std::to_string(p.x) + ", " +
-                                    std::to_string(p.y) + ") m is not inside [" + std::to_string(margin) + ", " +
-                                    std::to_string(t.width_m - margin) + "] x [" + std::to_string(margin) + ", " +
-                                    std::to_string(t.height_m - margin) + "] m (half a cell from the walls)");
+  for (const Shape& s : shapes) check_inside(s, settings.tank);
   for (std::size_t a = 0; a < shapes.size(); ++a)
     for (std::size_t b = a + 1; b < shapes.size(); ++b)
       if (polygons_overlap(shapes[a].polygon, shapes[b].polygon))
@@ -367,6 +397,13 @@ std::string SwimSimulation::check() const {
   return {};
 }
 
+bool SwimSimulation::finite_state() const {
+  const elastic::Body& b = world_->body();
+  const auto finite = [](Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); };
+  return std::all_of(b.points.position.begin(), b.points.position.end(), finite) &&
+         std::all_of(b.points.velocity.begin(), b.points.velocity.end(), finite);
+}
+
 SwimStep SwimSimulation::step(double max_dt_s) { return advance(std::min(world_->next_time_step(), max_dt_s)); }
 
 SwimStep SwimSimulation::step_toward(double frame_time_s) {
@@ -383,7 +420,12 @@ SwimStep SwimSimulation::advance(double dt_s) {
                 " s, below min_time_step" + when(time_s(), steps());
     return s;
   }
-  s.krylov_iterations = world_->step(s.dt_s).krylov.iterations;
+  try {
+    s.krylov_iterations = world_->step(s.dt_s).krylov.iterations;
+  } catch (const std::bad_alloc&) {
+    s.failure = "out of memory (std::bad_alloc) in a step" + when(time_s(), steps());
+    return s;
+  }
   if (std::string problem = check(); !problem.empty()) s.failure = problem + when(time_s(), steps());
   return s;
 }
@@ -407,9 +449,9 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
       krylov_iterations_ += s.krylov_iterations;
     }
     if (!s.failure.empty()) {
-      // Keep the state that failed as a last frame, if it can be drawn at all (a non-finite state
-      // may not be): the failure itself is the message either way.
-      if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s) {
+      // Keep the state that failed as a last frame, if it is finite (a non-finite one would make
+      // every metric near it NaN): the failure itself is the message either way.
+      if (on_frame && s.dt_s >= settings_.coupling.min_time_step_s && finite_state()) {
         try {
           on_frame(*this);
         } catch (const std::exception& e) {

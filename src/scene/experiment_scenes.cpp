@@ -188,7 +188,7 @@ InstabilityFigure read_instability_figure(const io::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   InstabilityFigure f;
   f.panels = static_cast<int>(r.integer("figure.panels"));
-  f.zoom_diameters = Reader(c, jellyfish_scene()).number("output.picture_zoom");
+  f.zoom_diameters = read_picture_zoom(c);
   f.expected = r.choice("figure.expected");
   return f;
 }

@@ -39,6 +39,12 @@ const Range kMaterialOrZero{0.0, 1e9, false, false};
 /// k_m of the continuum model (N/m² per metre of bell height): docs/jellyfish.md, "Elastic models".
 constexpr const char* kDefaultMuscleStiffness = "427.0";
 const Range kAny{};
+/// m: a body's size, from 0.1 mm (below any medusa; a bell 1e-308 m across had springs of infinite
+/// stiffness) to the largest tank.
+constexpr double kMinBodyLength = 1e-4;
+const Range kBodyLength{kMinBodyLength, 100.0, false, false};
+/// The thesis model's factors of its angular springs (a factor 1e308 made them infinitely stiff).
+const Range kFactor{0.0, 1e6, false, false};
 
 fluid::BoundaryType read_boundary(const std::string& name) { return *fluid::boundary_type_from_string(name); }
 
@@ -91,7 +97,7 @@ ParameterTable make_jellyfish_scene() {
       number("tank.pressure_tolerance", "1e-8", "", Range{0.0, 1e-2, true, false},
              "relative max-norm residual of each pressure solve"),
       number("tank.viscosity", "1.304e-5", "m²/s", kNonNegative, "kinematic viscosity ν", {1e-6, 1e-3, true}),
-      number("tank.density", "1000.0", "kg/m³", kPositive, "density ρ"),
+      number("tank.density", "1000.0", "kg/m³", Range::closed(1e-3, 1e5), "density ρ (thin gas to past mercury)"),
       {"tank.boundaries", Type::choices, "[\"free-slip\", \"free-slip\", \"free-slip\", \"free-slip\"]", "", {},
        {"no-slip", "free-slip", "outflow", "inflow", "periodic"}, 4, "sides [west, east, south, north] (§7.1)"},
       vec2("tank.inflow_velocity", "[0.0, 0.0]", "m/s", kAny, "velocity of the sides of type \"inflow\""),
@@ -111,10 +117,11 @@ ParameterTable make_jellyfish_scene() {
               "false: no jellyfish here (e.g. flow past obstacles); [[objects]] may still add some"),
       vec2("jellyfish.position", "[0.12, 0.08]", "m", kAny, "aperture centre, inside the tank"),
       number("jellyfish.tilt_deg", "0.0", "°", Range::closed(-360, 360), "swimming direction from +y, counter-clockwise"),
-      number("jellyfish.diameter", "0.04", "m", kPositive, "bell diameter (Fig. 8.21)"),
-      number("jellyfish.height", "0.028", "m", kPositive, "bell height"),
-      number("jellyfish.tentacle_length", "0.014", "m", kNonNegative, "tentacle length"),
-      number("jellyfish.thickness", "0.0015", "m", kPositive,
+      number("jellyfish.diameter", "0.04", "m", kBodyLength, "bell diameter (Fig. 8.21)"),
+      number("jellyfish.height", "0.028", "m", kBodyLength, "bell height"),
+      number("jellyfish.tentacle_length", "0.014", "m", Range::closed(0.0, 100.0),
+             "tentacle length; 0: none, else at least 0.0001 m"),
+      number("jellyfish.thickness", "0.0015", "m", Range::closed(1e-6, 10.0),
              "ϑ: 5.4 % of the height (§7.2); Fig. 8.21's 0.0002 is a rendering value"),
       choice("jellyfish.model", "angular", {"angular", "mesh"},
              "angular: string of points with angular springs (Fig. 7.2 right); mesh: Fig. 7.2 left"),
@@ -141,10 +148,10 @@ ParameterTable make_jellyfish_scene() {
       number("jellyfish.bell_modulus", "1.186e6", "Pa", kModulus,
              "thesis: λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
       number("jellyfish.muscle_modulus", "4.0e5", "Pa", kModulusOrZero, "thesis: λ of the circumferential muscle (§7.1)"),
-      number("jellyfish.bending_factor", "10.0", "", kNonNegative, "thesis: umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
-      number("jellyfish.tentacle_volume_fraction", "3.0", "", kPositive,
+      number("jellyfish.bending_factor", "10.0", "", kFactor, "thesis: umbrella angular springs: κ_θ = factor · κ_l · l_r²"),
+      number("jellyfish.tentacle_volume_fraction", "3.0", "", Range{0.0, 1e6, true, false},
              "thesis: tentacle springs' volume relative to the umbrella's (thesis: 0.01, stretches > 100 %)"),
-      number("jellyfish.tentacle_bending_factor", "1.0", "", kNonNegative,
+      number("jellyfish.tentacle_bending_factor", "1.0", "", kFactor,
              "thesis: tentacle angular springs: κ_θ = factor · κ_l · l_r²"),
       number("jellyfish.frequency", "0.7", "Hz", Range{0.0, 5.0, true, false}, "contractions per second", {0.1, 3.0}),
       number("jellyfish.gamma", "0.56", "", Range{0.0, 1.0, true, false}, "contracted rest length fraction γ (eq. 7.5)", {0.3, 1.0}),
@@ -203,7 +210,8 @@ ParameterTable make_jellyfish_scene() {
       boolean("output.pictures", "true", "a 2D picture per frame (frames/slice_NNNN.png)"),
       integer("output.picture_every", "1", 1, 1000000, "draw every n-th frame"),
       choice("output.picture_quantity", "vorticity", {"vorticity", "speed"}, "what the pictures colour"),
-      number("output.picture_zoom", "6.0", "bell diameters", kNonNegative, "width of the picture; 0: the whole tank"),
+      number("output.picture_zoom", "6.0", "bell diameters", Range::closed(0.0, 1000.0),
+             "width of the picture; 0: the whole tank, else at least 0.01"),
       boolean("output.vtk", "true", "fluid fields, tracers and the body per frame (frames/*.vti, *.vtp, jellyfish.pvd)"),
   };
   return ParameterTable("jellyfish", kPreamble, std::move(p));
@@ -249,6 +257,9 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
   j.diameter_m = r.number("jellyfish.diameter");
   j.height_m = r.number("jellyfish.height");
   j.tentacle_length_m = r.number("jellyfish.tentacle_length");
+  if (j.tentacle_length_m > 0 && j.tentacle_length_m < kMinBodyLength)
+    throw InputError("field 'jellyfish.tentacle_length' = " + io::format_number(j.tentacle_length_m) +
+                     " is out of range: 0 (no tentacles) or [" + io::format_number(kMinBodyLength) + ", 100] m");
   j.thickness_m = r.number("jellyfish.thickness");
   j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
                                                                        : jellyfish::UmbrellaModel::angular;
@@ -483,7 +494,8 @@ jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::strin
     muscles = std::array<int, 2>{bell.first_muscle_spring, static_cast<int>(bell.structure.springs.size()) - 1};
   }
   if (o.has("offset")) spec.offset_m = o.vec2("offset");
-  for (std::size_t k = 0; k < o.array_size("schedules"); ++k)
+  const std::size_t schedules = o.has("schedules") ? o.array_size("schedules") : 0;  // optional (docs/ib2d.md)
+  for (std::size_t k = 0; k < schedules; ++k)
     spec.schedules.push_back(
         read_schedule(o.element("schedules", k), where + ": schedules[" + std::to_string(k) + "]", muscles));
   try {
@@ -550,11 +562,12 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
                          " m (field 'jellyfish." + field + "')");
   }
   const jellyfish::MemoryEstimate e = jellyfish::estimate_memory(s);
-  const double budget = static_cast<double>(core::memory_budget_bytes());
-  if (!(e.bytes <= budget))
+  const core::MemoryBudget budget = core::memory_budget();
+  if (!(e.bytes <= static_cast<double>(budget.bytes)))
     throw InputError("the run would need about " + core::format_bytes(e.bytes) + " of memory (" + e.breakdown +
-                     "), more than the budget of " + core::format_bytes(budget) +
-                     " (half of this machine's memory unless --memory-limit sets it): coarsen tank.cells, raise "
+                     "), more than the budget of " + core::format_bytes(static_cast<double>(budget.bytes)) + " (" +
+                     budget.source + (budget.source == "--memory-limit" ? "" : "; --memory-limit sets it") +
+                     "): coarsen tank.cells, raise "
                      "jellyfish.spacing, record fewer frames (output.frame_interval) or raise --memory-limit");
 }
 
@@ -651,6 +664,14 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   return s;
 }
 
+
+double read_picture_zoom(const io::Config& c) {
+  const double zoom = Reader(c, jellyfish_scene()).number("output.picture_zoom");
+  if (zoom != 0.0 && zoom < kMinPictureZoom)
+    throw InputError("field 'output.picture_zoom' = " + io::format_number(zoom) + " is out of range: 0 (the whole " +
+                     "tank) or [" + io::format_number(kMinPictureZoom) + ", 1000] bell diameters");
+  return zoom;
+}
 
 const ParameterTable& jellyfish_scene() {
   static const ParameterTable table = make_jellyfish_scene();

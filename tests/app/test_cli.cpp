@@ -107,7 +107,7 @@ TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
       {"/dev/zero", "not a regular file"},  // read until memory ran out
       // Memory (issue 23): estimated from the settings before anything is allocated.
       {"--set jellyfish.spacing=1e-9", "of memory"},           // grew to 16.7 GB
-      {"--set jellyfish.height=280000", "cannot fit in the tank"},  // std::bad_alloc building the markers
+      {"--set jellyfish.height=50", "cannot fit in the tank"},  // 280000 m: std::bad_alloc building the markers
       {"--memory-limit 100M --set 'tank.cells=[1024, 1024]'", "budget of 100 MiB"},
       {"--memory-limit 12Q", "not a size"},
   };
@@ -124,7 +124,9 @@ TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
 TEST(Cli, PhysicalParametersHaveUpperBounds) {
   const fs::path dir = fresh_dir("upper_bounds");
   for (const char* field : {"jellyfish.bell_modulus=1e200", "jellyfish.muscle_modulus=1e308", "tank.height=1e308",
-                            "jellyfish.neural_delay=1e308"}) {
+                            "jellyfish.neural_delay=1e308",
+                            // issue 35, item 7: NaN metrics reported "ok", and NaN states ended at a chart
+                            "tank.density=1e308", "tank.density=1e-308"}) {
     const Result r = run_cli(std::string("simulate --quiet --set ") + field + " --out " + dir.string());
     EXPECT_EQ(r.exit_code, 2) << field << "\n" << r.output;
     const std::string key = std::string(field).substr(0, std::string(field).find('='));

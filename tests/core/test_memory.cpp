@@ -23,11 +23,17 @@ TEST(MemoryBudget, DefaultsToHalfThePhysicalMemoryAndCanBeSet) {
   set_memory_budget_bytes(0);
   const std::uint64_t physical = physical_memory_bytes();
   ASSERT_GT(physical, 0u);
-  EXPECT_EQ(memory_budget_bytes(), physical / 2);
+  // Half the physical memory, or less where the process's own limits (ulimit, cgroup) leave less.
+  const MemoryBudget fallback = default_memory_budget();
+  EXPECT_LE(fallback.bytes, physical / 2);
+  EXPECT_GT(fallback.bytes, 0u);
+  EXPECT_EQ(fallback.bytes == physical / 2, fallback.source == "half of this machine's memory") << fallback.source;
+  EXPECT_EQ(memory_budget_bytes(), fallback.bytes);
   set_memory_budget_bytes(123456789);
   EXPECT_EQ(memory_budget_bytes(), 123456789u);
+  EXPECT_EQ(memory_budget().source, "--memory-limit");
   set_memory_budget_bytes(0);
-  EXPECT_EQ(memory_budget_bytes(), physical / 2);
+  EXPECT_EQ(memory_budget_bytes(), fallback.bytes);
 }
 
 TEST(MemoryBudget, FormatsBytes) {

@@ -61,6 +61,28 @@ double largest_difference(const SwimRecording& a, const SwimRecording& b) {
   return d;
 }
 
+// Issue 35, item 7: densities far beyond the scene's allowed range (set here past the parameter
+// table) make the state NaN at the first step (1e-308) or leave it finite with metrics that are not
+// (1e308). Both are a failed run saying when and what, with finite metrics recorded up to the
+// failure and charts that can be drawn (no "no finite data to plot" instead of a summary).
+TEST(Swim, NonFiniteStatesAndMetricsAreDivergences) {
+  io::Config c = default_config(find_experiment("jellyfish"));
+  c.set("tank.tracers_per_side=0");
+  c.set("tank.cells=[24, 48]");
+  c.set("duration=0.1");
+  for (const double density : {1e-308, 1e308}) {
+    jellyfish::SwimSettings s = read_swim_settings(c);
+    s.tank.density_kg_per_m3 = density;
+    const SwimRecording rec = run_swim(s, {}, nullptr, {});
+    EXPECT_NE(rec.stats.failure.find("numerical instability"), std::string::npos) << density << ": " << rec.stats.failure;
+    EXPECT_NE(rec.stats.failure.find("t = "), std::string::npos) << rec.stats.failure;
+    if (density < 1.0) {
+      EXPECT_EQ(jellyfish::non_finite_metric(rec.metrics), "") << "the NaN state was recorded";
+    }
+    EXPECT_FALSE(rec.metrics.empty());
+  }
+}
+
 // The half tank (east half, a symmetry plane on the axis) against the whole tank, both keeping the
 // mirror symmetry, over one cycle (the bell moves 1.6-1.7 cm on the preview grid), for both fluid
 // solvers and an exact and an iterative pressure solver: the same steps and the same umbrella at

@@ -63,6 +63,12 @@ std::string definition_text(std::string_view path);
 /// command is byte-identical for the same inputs.
 void write_timings(const io::OutputDir& out, const nlohmann::ordered_json& timings);
 
+/// Runs `run` into `out`; an allocation that fails (std::bad_alloc) anywhere in it, or a RunError
+/// it throws (an output that could not be written), becomes the run's failure, the first saying in
+/// which stage (core::MemoryStage), with summary.json written (status "failed"; issue 35).
+Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function<Outcome(const io::OutputDir&)>& run,
+                    const io::OutputDir& out);
+
 /// Writes summary.json: status, version, command, key figures and the resolved configuration.
 void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
                    const nlohmann::ordered_json& figures, const std::string& failure);

@@ -2,6 +2,7 @@
 // Swimming metrics of a jellyfish slice (thesis §6.4, §8.2.1, Figs 6.10, 8.15–8.18): bell centroid
 // along the swimming axis, sub-umbrellar volume as a solid of revolution, aperture area, the
 // thrust of eq. 6.4 and Daniel's 1D model (eq. 6.5) driven by the simulated V(t), A(t).
+#include <string>
 #include <vector>
 
 #include "jellysim/jellyfish/slice_frame.hpp"
@@ -44,6 +45,11 @@ struct MetricsSettings {
 /// Metrics for a series of recorded frames (times increasing). Velocities, accelerations and
 /// dV/dt are central differences (one-sided at the ends); the first frame is the rest state.
 std::vector<MetricsRow> compute_metrics(const std::vector<SliceFrame>& frames, const MetricsSettings& settings);
+
+/// The first value of `rows` that is not finite, as "the metric 'thrust' is not finite (nan) at
+/// t = 0.1 s (frame 3)", or "" when every value is finite: a run whose metrics are not finite
+/// diverged even when its state stayed finite (issue 35, item 7).
+std::string non_finite_metric(const std::vector<MetricsRow>& rows);
 
 /// Daniel's model (eq. 6.5) in a dimensionally consistent form (docs/jellyfish.md):
 ///   ρ V (1 + α) du/dt = F_T − ½ ρ C_D A u|u|,  α = (h/r)^1.4 with h/r = (3V/(2A))·√(π/A),

@@ -118,6 +118,9 @@ class SwimSimulation {
   const fluid::Tracers& tracers() const { return world_->tracers(); }
   /// The problem that should stop the run now, or "".
   std::string check() const;
+  /// True when every marker's position and velocity is finite: a state that can be recorded as a
+  /// frame (a failed step's state is kept as the last frame only then).
+  bool finite_state() const;
   /// True while every step keeps the scene's mirror symmetry (coupling::TankSpec::symmetry).
   bool mirror_symmetric() const { return world_->mirror_symmetric(); }
   /// Why the mirror symmetry is not kept (the scene is not symmetric, or a live edit broke it), or "".

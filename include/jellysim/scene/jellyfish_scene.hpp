@@ -15,6 +15,10 @@ const ParameterTable& jellyfish_scene();
 /// [stability]; throws InputError naming the field and what is allowed (a polygon file: its path
 /// and line).
 jellyfish::SwimSettings read_swim_settings(const io::Config& c);
+/// output.picture_zoom: 0 (the whole tank) or [kMinPictureZoom, 1000] bell diameters (a narrower
+/// view has no width left to draw; throws InputError naming the field).
+double read_picture_zoom(const io::Config& c);
+inline constexpr double kMinPictureZoom = 0.01;
 
 /// The built-in scene, the scene file at `path` (when not empty) laid over it, then the `--set`
 /// assignments: what `view` starts from (`simulate` builds the same configuration through its
