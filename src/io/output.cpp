@@ -402,6 +402,9 @@ OutputDir OutputDir::for_run(std::filesystem::path dir, std::string_view command
   if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
     throw InputError("--out '" + dir.string() + "' is a file, not a directory");
   check_out_location(dir);  // before the lock creates it
+  // A directory of other files is refused before a lock file is written into it (`--out /proc`);
+  // the scan under the lock below is the one that counts.
+  if (fs::is_directory(dir, ec)) scan_earlier_run(dir, "--out");
   std::shared_ptr<DirectoryLock> lock = lock_directory(dir, "--out");
   clear_earlier_run(dir);
   OutputDir out(std::move(dir));
