@@ -69,11 +69,23 @@ void unflatten(const Eigen::VectorXd& in, std::vector<Vec2>& out) {
 
 }  // namespace
 
-std::string_view to_string(Scheme s) { return s == Scheme::explicit_euler ? "explicit" : "semi-implicit"; }
+std::span<const ImmersedBoundary::SchemeEntry> ImmersedBoundary::schemes() {
+  static const SchemeEntry table[] = {
+      {Scheme::explicit_euler, "explicit", &ImmersedBoundary::step_explicit},  // eqs. 4.19–4.21: forces at t^n
+      {Scheme::semi_implicit, "semi-implicit", &ImmersedBoundary::step_semi_implicit},  // backward Euler exchange
+  };
+  return table;
+}
+
+std::string_view to_string(Scheme s) {
+  for (const auto& entry : ImmersedBoundary::schemes())
+    if (entry.scheme == s) return entry.name;
+  return "unknown";
+}
 
 std::optional<Scheme> scheme_from_string(std::string_view name) {
-  if (name == "explicit") return Scheme::explicit_euler;
-  if (name == "semi-implicit") return Scheme::semi_implicit;
+  for (const auto& entry : ImmersedBoundary::schemes())
+    if (entry.name == name) return entry.scheme;
   return std::nullopt;
 }
 
@@ -295,8 +307,12 @@ double ImmersedBoundary::next_time_step() const {
 
 CoupledStepReport ImmersedBoundary::step(double dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("coupled time step must be > 0");
-  CoupledStepReport r =
-      settings_.scheme == Scheme::explicit_euler ? step_explicit(dt_s) : step_semi_implicit(dt_s);
+  const auto schemes = ImmersedBoundary::schemes();
+  const auto entry = std::find_if(schemes.begin(), schemes.end(), [this](const SchemeEntry& e) {
+    return e.scheme == settings_.scheme;
+  });
+  if (entry == schemes.end()) throw std::invalid_argument("unknown coupling scheme");
+  CoupledStepReport r = (this->*(entry->step))(dt_s);
   time_s_ += dt_s;
   ++steps_;
   return r;
@@ -401,111 +417,128 @@ Eigen::MatrixXd ImmersedBoundary::response_by_projections() {
   return r;
 }
 
+// The exchange is backward Euler (§4.3): ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ, i.e.
+// A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From a guess x0 of the increment (the
+// last step's), the correction e = ΔX − x0 solves
+//   A e = Δt U_L − x0 + Δt² R (F + K x0) = Δt J P (u* + Δt S (F + K x0) / ρ) − x0
+// by GMRES from zero. The stages below are that derivation's steps, in order.
 CoupledStepReport ImmersedBoundary::step_semi_implicit(double dt_s) {
   CoupledStepReport report;
   report.dt_s = dt_s;
+  SemiImplicitStep s;
+  linearise_forces(dt_s, s);
+  report.fluid = predict_fluid(s);
+  build_right_hand_side(s);
+  report.krylov = solve_increment(s);
+  apply_end_of_step_forces(s, report.krylov);
+  move_markers_with_fluid(dt_s);
+  return report;
+}
+
+void ImmersedBoundary::linearise_forces(double dt_s, SemiImplicitStep& s) {
   // Forces at the end of the step: rest lengths at t + Δt, positions linearised about x^n.
+  s.dt = dt_s;
+  s.dt2 = dt_s * dt_s;
   if (actuator_) actuator_(time_s_ + dt_s, body_);
   compute_forces(force_);
-  Eigen::SparseMatrix<double> stiffness;
-  assemble_stiffness(stiffness);
+  assemble_stiffness(s.stiffness);
+  s.f0 = flatten(force_);
+  // Where the fluid step is affine in the body acceleration (Eulerian: one projection of u* + Δt a),
+  // the guess's forces ride along with it (predict_fluid): "merged".
+  s.merged = fluid_.projects_body_acceleration_linearly() && dt_s <= fluid_.stable_time_step();
+  if (last_increment_.size() == s.f0.size()) s.x0 = last_increment_;
+  else if (s.merged) s.x0 = dt_s * flatten(body_.points.velocity);  // first step: the markers' own motion
+}
 
-  // The exchange is backward Euler: ΔX = Δt U_L + Δt² R (F + K ΔX), R = J P S / ρ, i.e.
-  // A ΔX = b with A = I − Δt² R K and b = Δt U_L + Δt² R F. From a guess x0 of the increment (the
-  // last step's), the correction e = ΔX − x0 solves
-  //   A e = Δt U_L − x0 + Δt² R (F + K x0) = Δt J P (u* + Δt S (F + K x0) / ρ) − x0,
-  // by GMRES from zero (step 2).
-  // 1. The fluid over the step, u_L = P u* (advection, diffusion, projection). Where the fluid step
-  //    is affine in the body acceleration (Eulerian: one projection of u* + Δt a), the guess's
-  //    forces ride along as that acceleration: one projection gives both u_L + Δt P S (F + K x0)/ρ
-  //    and the right-hand side. Otherwise the forces are projected separately.
-  const double dt2 = dt_s * dt_s;
-  const Eigen::VectorXd f0 = flatten(force_);
-  const auto& x = body_.points.position;
+fluid::StepReport ImmersedBoundary::predict_fluid(SemiImplicitStep& s) {
+  // The fluid over the step, u_L = P u* (advection, diffusion, projection); merged, one projection
+  // gives u_L + Δt P S (F + K x0)/ρ and the right-hand side at once. Then U_L at the markers.
   fluid::FaceAccelerations& acc = fluid_.body_acceleration();
-  const bool merged = fluid_.projects_body_acceleration_linearly() && dt_s <= fluid_.stable_time_step();
-  Eigen::VectorXd x0;
-  if (last_increment_.size() == f0.size()) x0 = last_increment_;
-  else if (merged) x0 = dt_s * flatten(body_.points.velocity);  // first step: the markers' own motion
-  if (merged) {
-    unflatten(f0 + stiffness * x0, work_);
+  if (s.merged) {
+    unflatten(s.f0 + s.stiffness * s.x0, work_);
     spread_to_interior_faces(work_, acc);
   } else {
     acc.u.fill(0.0);
     acc.v.fill(0.0);
   }
-  report.fluid = fluid_.step(dt_s);
-  if (merged) {
+  const fluid::StepReport report = fluid_.step(s.dt);
+  if (s.merged) {
     acc.u.fill(0.0);
     acc.v.fill(0.0);
   }
   interpolate_at_markers(fluid_.state().velocity, velocity_);
+  const auto& x = body_.points.position;
   if (has_targets_)  // target points move along their path: ΔX is known
     for (std::size_t p = 0; p < x.size(); ++p)
-      if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + dt_s) - x[p]) / dt_s;
+      if (is_target_[p]) velocity_[p] = (target_position(p, time_s_ + s.dt) - x[p]) / s.dt;
+  return report;
+}
 
-  // 2. The right-hand side, then GMRES.
+void ImmersedBoundary::build_right_hand_side(SemiImplicitStep& s) {
+  // b − A x0 = Δt U − x0, plus Δt² R (F + K x0) when the forces were not merged into the fluid step.
   const Eigen::VectorXd fluid_velocity = flatten(velocity_);
-  if (x0.size() != f0.size()) x0 = dt_s * fluid_velocity;
-  Eigen::VectorXd rhs = dt_s * fluid_velocity - x0;
-  if (!merged) {
+  if (s.x0.size() != s.f0.size()) s.x0 = s.dt * fluid_velocity;
+  s.rhs = s.dt * fluid_velocity - s.x0;
+  if (!s.merged) {
     Eigen::VectorXd response;
-    apply_response(f0 + stiffness * x0, response);
+    apply_response(s.f0 + s.stiffness * s.x0, response);
     std::swap(base_field_, scratch_.velocity);  // P S (F + K x0) / ρ
-    rhs += dt2 * response;
+    s.rhs += s.dt2 * response;
   }
-  // With the mobility preconditioner M ≈ A (exact to round-off with the FFT pressure solver),
-  //    GMRES solves A M⁻¹ y = rhs and e = M⁻¹ y: one iteration when M = A.
-  // Each operator application spreads K M⁻¹ v_k and projects it; keep those fields, so that the
-  //    end-of-step force field P S K e is their combination with GMRES's coefficients.
-  const bool preconditioned = settings_.preconditioner == Preconditioner::mobility;
-  if (preconditioned) prepare_preconditioner(dt_s, stiffness);
   // A mirror-symmetric scene has a symmetric solution: solve for it (the state is made symmetric
   // after the step anyway), so that the last step's solver error does not seed an antisymmetric
   // part the symmetric preconditioner would leave to plain GMRES.
-  if (!mirror_partner_.empty()) keep_symmetric_part(rhs);
-  std::size_t applied = 0;
+  if (!mirror_partner_.empty()) keep_symmetric_part(s.rhs);
+}
+
+ode::GmresReport ImmersedBoundary::solve_increment(SemiImplicitStep& s) {
+  // With the mobility preconditioner M ≈ A (exact to round-off with the FFT pressure solver),
+  // GMRES solves A M⁻¹ y = rhs and e = M⁻¹ y: one iteration when M = A. Each operator application
+  // spreads K M⁻¹ v_k and projects it; those fields are kept (basis_fields_), so that the
+  // end-of-step force field P S K e is their combination with GMRES's coefficients.
+  const bool preconditioned = settings_.preconditioner == Preconditioner::mobility;
+  if (preconditioned) prepare_preconditioner(s.dt, s.stiffness);
   Eigen::VectorXd z;
   ode::LinearOperator op = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
     if (preconditioned) apply_preconditioner(in, z);
     const Eigen::VectorXd& e = preconditioned ? z : in;
     Eigen::VectorXd rkv;
-    apply_response(stiffness * e, rkv);
+    apply_response(s.stiffness * e, rkv);
     // Keep the field by swapping buffers (the next projection overwrites all of scratch_).
-    if (applied >= basis_fields_.size()) basis_fields_.push_back(scratch_.velocity);
-    else std::swap(basis_fields_[applied], scratch_.velocity);
-    ++applied;
-    out = e - dt2 * rkv;
+    if (s.applied >= basis_fields_.size()) basis_fields_.push_back(scratch_.velocity);
+    else std::swap(basis_fields_[s.applied], scratch_.velocity);
+    ++s.applied;
+    out = e - s.dt2 * rkv;
   };
-  Eigen::VectorXd correction, coefficients;
-  report.krylov = ode::gmres_from_zero(op, rhs, correction, coefficients, settings_.krylov_tolerance,
-                                  settings_.krylov_max_iterations);
+  const ode::GmresReport krylov = ode::gmres_from_zero(op, s.rhs, s.correction, s.coefficients,
+                                                       settings_.krylov_tolerance, settings_.krylov_max_iterations);
   if (preconditioned) {
-    apply_preconditioner(correction, z);
-    correction = z;
+    apply_preconditioner(s.correction, z);
+    s.correction = z;
   }
-  const Eigen::VectorXd dx = x0 + correction;
-  last_increment_ = dx;
+  last_increment_ = s.x0 + s.correction;
+  return krylov;
+}
 
-  // 3. The end-of-step forces: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ. The fluid holds u_L, plus
-  //    Δt P S (F + K x0) / ρ when merged; the rest is Δt P S K e / ρ.
+void ImmersedBoundary::apply_end_of_step_forces(const SemiImplicitStep& s, const ode::GmresReport& krylov) {
+  // u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ. The fluid holds u_L, plus Δt P S (F + K x0) / ρ when
+  // merged; the rest is Δt P S K e / ρ, GMRES's combination of the kept fields.
   fluid::Velocity& u = fluid_.state().velocity;
   auto add = [&u](double c, const fluid::Velocity& g) {
     for (std::size_t k = 0; k < u.u.raw().size(); ++k) u.u.raw()[k] += c * g.u.raw()[k];
     for (std::size_t k = 0; k < u.v.raw().size(); ++k) u.v.raw()[k] += c * g.v.raw()[k];
   };
-  if (report.krylov.coefficients_valid && coefficients.size() <= static_cast<Eigen::Index>(applied)) {
-    if (!merged) add(dt_s, base_field_);
-    for (Eigen::Index k = 0; k < coefficients.size(); ++k)
-      add(dt_s * coefficients[k], basis_fields_[static_cast<std::size_t>(k)]);
+  if (krylov.coefficients_valid && s.coefficients.size() <= static_cast<Eigen::Index>(s.applied)) {
+    if (!s.merged) add(s.dt, base_field_);
+    for (Eigen::Index k = 0; k < s.coefficients.size(); ++k)
+      add(s.dt * s.coefficients[k], basis_fields_[static_cast<std::size_t>(k)]);
   } else {  // GMRES restarted or stopped early: project the end-of-step forces afresh
-    unflatten(merged ? Eigen::VectorXd(stiffness * correction) : Eigen::VectorXd(f0 + stiffness * dx), work_);
+    unflatten(s.merged ? Eigen::VectorXd(s.stiffness * s.correction) : Eigen::VectorXd(s.f0 + s.stiffness * last_increment_),
+              work_);
     project_spread_forces(work_);
-    add(dt_s, scratch_.velocity);
+    add(s.dt, scratch_.velocity);
   }
   fluid::refresh_velocity_ghosts(u, fluid_.settings().boundaries);
-  move_markers_with_fluid(dt_s);
-  return report;
 }
 
 void ImmersedBoundary::prepare_preconditioner(double dt_s, const Eigen::SparseMatrix<double>& stiffness) {

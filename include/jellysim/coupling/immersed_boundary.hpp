@@ -12,6 +12,7 @@
 #include <numbers>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,15 @@ class ImmersedBoundary {
   ImmersedBoundary(fluid::FluidSolver& fluid, elastic::Body& body, const CouplingSettings& settings,
                    Actuator actuator = {});
 
+  /// A coupling scheme: the name scene files give it (`coupling.scheme`) and its step.
+  struct SchemeEntry {
+    Scheme scheme;
+    std::string_view name;
+    CoupledStepReport (ImmersedBoundary::*step)(double dt_s);
+  };
+  /// The schemes: the one table that names, parses and runs them (to_string, scheme_from_string, step).
+  static std::span<const SchemeEntry> schemes();
+
   double time_s() const { return time_s_; }
   long steps() const { return steps_; }
   const CouplingSettings& settings() const { return settings_; }
@@ -122,6 +132,29 @@ class ImmersedBoundary {
  private:
   CoupledStepReport step_explicit(double dt_s);
   CoupledStepReport step_semi_implicit(double dt_s);
+  /// What one semi-implicit step carries from stage to stage.
+  struct SemiImplicitStep {
+    double dt = 0.0, dt2 = 0.0;
+    Eigen::VectorXd f0;                     ///< F at x^n, rest lengths at t + Δt
+    Eigen::SparseMatrix<double> stiffness;  ///< K = ∂F/∂X at x^n
+    bool merged = false;                    ///< the guess's forces ride with the fluid's projection
+    Eigen::VectorXd x0;                     ///< the increment's guess
+    Eigen::VectorXd rhs;                    ///< b − A x0
+    Eigen::VectorXd correction;             ///< e = ΔX − x0
+    Eigen::VectorXd coefficients;           ///< GMRES's, of the operator applications
+    std::size_t applied = 0;                ///< operator applications (their fields in basis_fields_)
+  };
+  /// Stage 1: F and K at x^n (rest lengths at t + Δt), the guess x0, whether the fluid step takes
+  /// the guess's forces along.
+  void linearise_forces(double dt_s, SemiImplicitStep& s);
+  /// Stage 2: the fluid over the step (u_L) and its velocity U_L at the markers.
+  fluid::StepReport predict_fluid(SemiImplicitStep& s);
+  /// Stage 3: the right-hand side b − A x0 of the increment's equation.
+  void build_right_hand_side(SemiImplicitStep& s);
+  /// Stage 4: GMRES (preconditioned by the marker-space solve) for e; ΔX = x0 + e.
+  ode::GmresReport solve_increment(SemiImplicitStep& s);
+  /// Stage 5: u^{n+1} = u_L + Δt P S (F + K ΔX) / ρ from the fields GMRES kept.
+  void apply_end_of_step_forces(const SemiImplicitStep& s, const ode::GmresReport& krylov);
   void compute_forces(std::vector<Vec2>& force) const;
   void assemble_stiffness(Eigen::SparseMatrix<double>& k) const;
   /// velocity_at_markers = J P S (forces)/ρ: the divergence-free velocity change per second that
