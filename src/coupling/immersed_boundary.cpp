@@ -71,10 +71,16 @@ void unflatten(const Eigen::VectorXd& in, std::vector<Vec2>& out) {
 
 std::span<const ImmersedBoundary::SchemeEntry> ImmersedBoundary::schemes() {
   static const SchemeEntry table[] = {
-      {Scheme::explicit_euler, "explicit", &ImmersedBoundary::step_explicit},  // eqs. 4.19–4.21: forces at t^n
       {Scheme::semi_implicit, "semi-implicit", &ImmersedBoundary::step_semi_implicit},  // backward Euler exchange
+      {Scheme::explicit_euler, "explicit", &ImmersedBoundary::step_explicit},  // eqs. 4.19–4.21: forces at t^n
   };
   return table;
+}
+
+std::vector<std::string> scheme_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : ImmersedBoundary::schemes()) names.emplace_back(entry.name);
+  return names;
 }
 
 std::string_view to_string(Scheme s) {

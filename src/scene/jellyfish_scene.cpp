@@ -177,7 +177,7 @@ ParameterTable make_jellyfish_scene() {
       number("jellyfish.steer_damping", "1.5", "cycles", kNonNegative,
              "the last cycle's turn, times this, is subtracted from the heading error"),
 
-      choice("coupling.scheme", "semi-implicit", {"semi-implicit", "explicit"},
+      choice("coupling.scheme", "semi-implicit", coupling::scheme_names(),
              "semi-implicit (backward Euler exchange, GMRES) or explicit (thesis)"),
       choice("coupling.kernel", "bilinear", {"bilinear", "peskin4"},
              "bilinear (thesis: nearest four samples) or Peskin's 4-point kernel"),

@@ -32,6 +32,8 @@ enum class Scheme { explicit_euler, semi_implicit };
 std::string_view to_string(Scheme s);
 /// "explicit" or "semi-implicit"; nullopt otherwise.
 std::optional<Scheme> scheme_from_string(std::string_view name);
+/// The schemes' names (ImmersedBoundary::schemes), for scene files' choices.
+std::vector<std::string> scheme_names();
 
 /// How the semi-implicit scheme's GMRES is preconditioned.
 enum class Preconditioner {
