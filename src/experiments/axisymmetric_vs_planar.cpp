@@ -10,7 +10,9 @@
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/jellyfish/metrics.hpp"
 #include "jellysim/render/field_picture.hpp"
+#include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
+#include "jellysim/scene/parameters.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -29,8 +31,8 @@ struct Comparison {
 
 Comparison read_comparison(io::Config c) {
   Comparison run;
-  run.cycles = static_cast<int>(c.integer("cycles", 2, 100));
-  const double frequency = c.number("jellyfish.frequency", io::Range{0.0, 5.0, true, false});
+  run.cycles = scene::read_axisymmetric_vs_planar_cycles(c);
+  const double frequency = scene::Reader(c, scene::jellyfish_scene()).number("jellyfish.frequency");
   c.set("duration=" + io::format_number(run.cycles / frequency));
   for (std::size_t g = 0; g < 2; ++g) {
     c.set(std::string("tank.geometry=\"") + kGeometries[g].name + "\"");

@@ -30,14 +30,13 @@ struct HooverMillerRun {
 
 HooverMillerRun read_hoover_miller(io::Config c) {
   HooverMillerRun run;
-  run.re = c.number("re", io::Range{0.0, 1e5, true, false});
-  run.grid = static_cast<int>(c.integer("grid", 32, 1024));
-  if (run.grid % 8 != 0)
-    throw InputError("field 'grid' = " + std::to_string(run.grid) + " must be a multiple of 8 in [32, 1024]");
-  run.cycles = static_cast<int>(c.integer("cycles", 1, 100));
+  const scene::HooverMillerFields fields = scene::read_hoover_miller_fields(c);
+  run.re = fields.re;
+  run.grid = fields.grid;
+  run.cycles = fields.cycles;
   jellyfish::HooverMillerSpec spec;
   spec.resolution = run.grid;
-  run.muscles = c.choice("muscles", {"ib2d", "per-length"});
+  run.muscles = fields.muscles;
   spec.muscles_per_length = run.muscles == "per-length";
   run.bell = jellyfish::hoover_miller_bell(spec);
   c.set("duration=" + std::to_string(run.cycles));

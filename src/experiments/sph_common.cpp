@@ -99,4 +99,11 @@ Experiment make_experiment(std::string name, std::string description, std::strin
   return e;
 }
 
+Experiment make_bar_experiment(std::string name, std::string description, std::string definition_path,
+                               std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare) {
+  Experiment e = make_experiment(std::move(name), std::move(description), std::move(definition_path), std::move(prepare));
+  e.base_path = kBarBasePath;
+  return e;
+}
+
 }  // namespace jellysim::experiments::sph_common

@@ -53,4 +53,11 @@ nlohmann::ordered_json run_figures(const sph::RunResult& r, double wall_seconds,
 Experiment make_experiment(std::string name, std::string description, std::string definition_path,
                            std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare);
 
+/// The base scene of the bar scenes (swinging-bar, bar-hits-wall, bar-hits-particle, sph-stream):
+/// the one place for the Figure 8.1 bar's [bar] defaults, which elastic::BarSpec's are (tested).
+inline constexpr const char* kBarBasePath = "scenes/bar.toml";
+/// make_experiment for a scene on the Figure 8.1 bar: its definition extends kBarBasePath.
+Experiment make_bar_experiment(std::string name, std::string description, std::string definition_path,
+                               std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare);
+
 }  // namespace jellysim::experiments::sph_common

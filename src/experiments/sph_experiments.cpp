@@ -117,13 +117,13 @@ std::function<Outcome(const io::OutputDir&)> prepare_bar_hits_particle(const Con
 }  // namespace
 
 Experiment bar_hits_wall_experiment() {
-  return make_experiment("bar-hits-wall",
+  return make_bar_experiment("bar-hits-wall",
                          "Thesis Figure 8.2: the Figure 8.1 bar swings onto a static wall 0.45 below it",
                          "experiments/bar-hits-wall.toml", prepare_bar_hits_wall);
 }
 
 Experiment bar_hits_particle_experiment() {
-  return make_experiment("bar-hits-particle",
+  return make_bar_experiment("bar-hits-particle",
                          "Thesis Figure 8.3: the Figure 8.1 bar collides with a moving point mass",
                          "experiments/bar-hits-particle.toml", prepare_bar_hits_particle);
 }

@@ -252,7 +252,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_integrator_cost(const Conte
 }  // namespace
 
 Experiment sph_stream_experiment() {
-  return make_experiment("sph-stream",
+  return make_bar_experiment("sph-stream",
                          "Thesis Figure 8.4: a stream of SPH particles falls onto the Figure 8.1 bar",
                          "experiments/sph-stream.toml", prepare_sph_stream);
 }

@@ -6,6 +6,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/render/plot.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
+#include "sph_common.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -190,8 +191,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_swinging_bar(const Context&
 }  // namespace
 
 Experiment swinging_bar_experiment() {
-  return {"swinging-bar", "Thesis Figure 8.1: an elastic strand swinging from one pinned corner",
-          "scenes/swinging-bar.toml", prepare_swinging_bar};
+  return sph_common::make_bar_experiment("swinging-bar",
+                                         "Thesis Figure 8.1: an elastic strand swinging from one pinned corner",
+                                         "scenes/swinging-bar.toml", prepare_swinging_bar);
 }
 
 }  // namespace jellysim::experiments

@@ -3,13 +3,15 @@
 //    toward the mirror point on its right; the heading over time shows whether it turns;
 //  * obstacle-flow: uniform flow past a fixed cylinder held by the immersed boundary; drag
 //    coefficient, leakage through the outline, and a picture of the flow.
+#include <algorithm>
+#include <array>
 #include <cmath>
-#include <future>
 #include <numbers>
 
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/render/plot.hpp"
 #include "jellysim/scene/experiment_scenes.hpp"
 
@@ -73,12 +75,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
   return [settings, offset, settle_cycles, ctx](const io::OutputDir& out) {
     const Vec2 start = settings.jellyfish().aperture_centre_m;
     const Vec2 left = start + Vec2{-offset.x, offset.y}, right = start + offset;
-    // Three independent runs; two at a time on two cores.
-    auto run = [&](std::optional<Vec2> target) { return trace_heading(settings, target); };
-    auto left_run = std::async(std::launch::async, run, std::optional<Vec2>(left));
-    const HeadingTrace none = run(std::nullopt);
-    const HeadingTrace to_left = left_run.get();
-    const HeadingTrace to_right = run(std::optional<Vec2>(right));
+    // Three independent runs (left, none, right) as the project's pool's tasks, one per core.
+    const std::array<std::optional<Vec2>, 3> targets{left, std::nullopt, right};
+    std::array<HeadingTrace, 3> traces;
+    WorkerPool pool(std::min(resolve_threads(0), static_cast<int>(targets.size())));
+    pool.run_tasks(targets.size(), [&](std::size_t k) { traces[k] = trace_heading(settings, targets[k]); });
+    const HeadingTrace& to_left = traces[0];
+    const HeadingTrace& none = traces[1];
+    const HeadingTrace& to_right = traces[2];
 
     io::CsvWriter csv({"t", "heading_left", "heading_none", "heading_right", "bearing_left", "bearing_right"});
     const std::size_t n = std::min({none.t.size(), to_left.t.size(), to_right.t.size()});

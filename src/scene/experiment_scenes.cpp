@@ -131,6 +131,31 @@ ParameterTable make_jellyfish_study_rules() {
   return ParameterTable("jellyfish-studies", "", std::move(p));
 }
 
+/// hoover-miller's own fields (the tank, coupling and [[objects]] are the jellyfish scene's).
+ParameterTable make_hoover_miller_rules() {
+  std::vector<Parameter> p{
+      rule("re", Type::number, "", Range{0.0, 1e5, true, false},
+           "Reynolds number ρ D U / μ with D = 1 m, U = 1 m/s (`--re`); sets tank.viscosity = 1/re m²/s"),
+      rule("grid", Type::integer, "", Range::closed(32, 1024),
+           "IB2d's N, a multiple of 8 (`--grid`); sets tank.cells = [0.375 N, 1.25 N] and the bell's resolution"),
+      rule("cycles", Type::integer, "", Range::closed(1, 100), "strokes of 1 s simulated (`--cycles`); sets duration"),
+      rule("muscles", Type::choice, "", {},
+           "ib2d: IB2d's muscle springs, 1e5 each at any N; per-length: each stands for its ds of bell, 1e5 · 256/N "
+           "(docs/ib2d.md)",
+           {"ib2d", "per-length"}),
+  };
+  return ParameterTable("hoover-miller", "", std::move(p));
+}
+
+/// axisymmetric-vs-planar's own field.
+ParameterTable make_axisymmetric_vs_planar_rules() {
+  std::vector<Parameter> p{
+      rule("cycles", Type::integer, "", Range::closed(2, 100),
+           "contraction cycles of each run; sets duration = cycles / jellyfish.frequency"),
+  };
+  return ParameterTable("axisymmetric-vs-planar", "", std::move(p));
+}
+
 }  // namespace
 
 const ParameterTable& integrator_order_scene() {
@@ -230,6 +255,32 @@ SteeringScene read_steering(const io::Config& c) {
 
 std::vector<double> read_coupling_stability_steps(const io::Config& c) {
   return Reader(c, jellyfish_study_rules()).numbers("study.time_steps");
+}
+
+const ParameterTable& hoover_miller_rules() {
+  static const ParameterTable table = make_hoover_miller_rules();
+  return table;
+}
+
+HooverMillerFields read_hoover_miller_fields(const io::Config& c) {
+  const Reader r(c, hoover_miller_rules());
+  HooverMillerFields f;
+  f.re = r.number("re");
+  f.grid = static_cast<int>(r.integer("grid"));
+  if (f.grid % 8 != 0)
+    throw InputError("field 'grid' = " + std::to_string(f.grid) + " must be a multiple of 8 in [32, 1024]");
+  f.cycles = static_cast<int>(r.integer("cycles"));
+  f.muscles = r.choice("muscles");
+  return f;
+}
+
+const ParameterTable& axisymmetric_vs_planar_rules() {
+  static const ParameterTable table = make_axisymmetric_vs_planar_rules();
+  return table;
+}
+
+int read_axisymmetric_vs_planar_cycles(const io::Config& c) {
+  return static_cast<int>(Reader(c, axisymmetric_vs_planar_rules()).integer("cycles"));
 }
 
 }  // namespace jellysim::scene

@@ -1,25 +1,16 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <optional>
 #include <span>
-#include <sstream>
 
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/memory.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
-#include "jellysim/io/ib2d_files.hpp"
 #include "jellysim/io/output.hpp"
-#include "jellysim/jellyfish/hoover_miller.hpp"
-#include "jellysim/jellyfish/ib2d_object.hpp"
+#include "jellysim/scene/objects.hpp"
 
 namespace jellysim::scene {
 
@@ -33,7 +24,6 @@ const Range kNonNegative = Range::non_negative();
 const Range kModulus{0.0, 1e9, true, false};          ///< Pa: up to stiff plastics; mesoglea ~1e2–1e4
 const Range kModulusOrZero{0.0, 1e9, false, false};
 const Range kTankSize{0.0, 100.0, true, false};       ///< m
-const Range kStiffness{0.0, 1e9, true, false};        ///< N/m of an obstacle's tethers
 const Range kMaterial{0.0, 1e9, true, false};         ///< continuum material quantities (N/m, N·m, kg/m²)
 const Range kMaterialOrZero{0.0, 1e9, false, false};
 /// k_m of the continuum model (N/m² per metre of bell height): docs/jellyfish.md, "Elastic models".
@@ -308,206 +298,9 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
   return j;
 }
 
-/// Limits of a polygon file: a few MiB of text and 10,000 vertices are far beyond any obstacle
-/// outline (the markers resample it at half a cell); the polygon checks sort and sweep
-/// (jellyfish/segment_sweep.hpp: a 50,000-vertex outline in milliseconds).
-constexpr std::uintmax_t kMaxPolygonFileBytes = 4u << 20;
-constexpr std::size_t kMaxPolygonVertices = 10000;
-
-/// One number filling the whole token (strict: "O.6" or "1.2.3" are not numbers).
-std::optional<double> parse_number(std::string_view token) {
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-/// Polygon vertices from a text file: one "x y" or "x,y" pair (metres) per line; '#' starts a
-/// comment; blank lines are skipped. Anything else is an error naming the line: a regular file
-/// only (not a directory or a device such as /dev/zero), at most kMaxPolygonFileBytes.
-std::vector<Vec2> read_polygon_file(const std::string& path, const std::string& where) {
-  const std::string file = where + ": polygon file '" + path + "'";
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(file + " cannot be read: " + (ec ? ec.message() : "no such file"));
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(file + " is not a regular file (a directory or a device)");
-  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  if (ec || bytes > kMaxPolygonFileBytes)
-    throw InputError(file + " is " + std::to_string(bytes) + " bytes; at most " + std::to_string(kMaxPolygonFileBytes));
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file + " cannot be read: " + io::os_reason(errno ? errno : EACCES));
-  std::vector<Vec2> points;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::vector<std::string_view> tokens;
-    for (std::size_t at = line.find_first_not_of(" \t\r"); at != std::string::npos;) {
-      const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
-      tokens.push_back(std::string_view(line).substr(at, end - at));
-      at = line.find_first_not_of(" \t\r", end);
-    }
-    if (tokens.empty()) continue;  // blank or comment line
-    const auto x = parse_number(tokens[0]);
-    const auto y = tokens.size() > 1 ? parse_number(tokens[1]) : std::nullopt;
-    if (tokens.size() != 2 || !x || !y)
-      throw InputError(file + " line " + std::to_string(number) + ": expected two numbers \"x y\", got \"" +
-                       line.substr(0, 60) + "\"");
-    if (points.size() == kMaxPolygonVertices)
-      throw InputError(file + " has more than " + std::to_string(kMaxPolygonVertices) + " vertices");
-    points.push_back({*x, *y});
-  }
-  return points;
-}
-
-/// Fails on fields an object of this type does not have.
-void require_known_fields(const io::Config& o, const std::vector<std::string>& allowed, const std::string& where) {
-  for (const std::string& k : o.keys())
-    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(where + ": unknown field '" + k + "' (allowed: " + list + ")");
-    }
-}
-
-jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where) {
-  jellyfish::ObstacleSpec spec;
-  spec.name = where;
-  std::vector<std::string> allowed{"type", "tether_stiffness", "stiffness", "velocity", "amplitude", "frequency"};
-  if (type == "circle") {
-    spec.shape = jellyfish::ObstacleShape::circle;
-    allowed.insert(allowed.end(), {"centre", "radius"});
-  } else if (type == "box") {
-    spec.shape = jellyfish::ObstacleShape::box;
-    allowed.insert(allowed.end(), {"centre", "size", "angle_deg"});
-  } else {
-    spec.shape = jellyfish::ObstacleShape::polygon;
-    allowed.insert(allowed.end(), {"points", "file"});
-  }
-  require_known_fields(o, allowed, where);
-  auto required_vec2 = [&](const char* key) {
-    if (!o.has(key)) throw InputError(where + ": missing field '" + key + "'");
-    return o.vec2(key);
-  };
-  if (spec.shape != jellyfish::ObstacleShape::polygon) spec.centre_m = required_vec2("centre");
-  if (spec.shape == jellyfish::ObstacleShape::circle) {
-    if (!o.has("radius")) throw InputError(where + ": missing field 'radius'");
-    spec.radius_m = o.number("radius", io::Range::positive());
-  }
-  if (spec.shape == jellyfish::ObstacleShape::box) {
-    spec.size_m = required_vec2("size");
-    if (o.has("angle_deg")) spec.angle_rad = o.number("angle_deg", io::Range::closed(-360, 360)) * kDegree;
-  }
-  if (spec.shape == jellyfish::ObstacleShape::polygon) {
-    if (o.has("points") == o.has("file"))
-      throw InputError(where + ": a polygon needs exactly one of 'points' = [x0, y0, x1, y1, ...] or 'file'");
-    if (o.has("file")) {
-      spec.vertices_m = read_polygon_file(o.string("file"), where);
-    } else {
-      const std::vector<double> xy = o.numbers("points");
-      if (xy.size() % 2 != 0) throw InputError(where + ": field 'points' needs an even count [x0, y0, x1, y1, ...]");
-      for (std::size_t k = 0; k + 1 < xy.size(); k += 2) spec.vertices_m.push_back({xy[k], xy[k + 1]});
-    }
-  }
-  if (o.has("stiffness") && o.has("tether_stiffness"))
-    throw InputError(where + ": give either 'tether_stiffness' (N/m² per metre of outline) or 'stiffness' (N/m per "
-                             "marker), not both");
-  if (o.has("stiffness")) spec.tether_stiffness_n_per_m = o.number("stiffness", kStiffness);
-  if (o.has("tether_stiffness")) spec.tether_stiffness_n_per_m2 = o.number("tether_stiffness", kStiffness);
-  if (o.has("velocity")) spec.motion.velocity_m_per_s = o.vec2("velocity");
-  if (o.has("amplitude")) spec.motion.amplitude_m = o.vec2("amplitude");
-  if (o.has("frequency")) spec.motion.frequency_hz = o.number("frequency", io::Range::non_negative());
-  try {
-    jellyfish::validate(spec);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
-  return spec;
-}
-
-/// One [[objects.schedules]] table of an IB2d object: a column of a run of its springs as a law of t.
-/// `muscles`: the rows of a generated model's muscle springs (empty when the object has none).
-jellyfish::SpringSchedule read_schedule(const io::Config& o, const std::string& where,
-                                        std::optional<std::array<int, 2>> muscles) {
-  require_known_fields(o, {"springs", "column", "law", "frequency", "amplitude", "mean", "gamma"}, where);
-  if (!o.has("springs")) throw InputError(where + ": missing field 'springs' = [first, last] (rows of the .spring file, from 1)");
-  jellyfish::SpringSchedule s;
-  if (muscles && o.literal("springs") == "\"muscles\"") {
-    s.first = (*muscles)[0];
-    s.last = (*muscles)[1];
-  } else {
-    const std::vector<std::int64_t> rows = o.integers("springs", 1, 100'000'000);
-    if (rows.size() != 2 || rows[1] < rows[0])
-      throw InputError(where + ": field 'springs' must be [first, last] with first <= last (rows of the .spring file, "
-                               "from 1)" + (muscles ? std::string(", or \"muscles\"") : std::string()));
-    s.first = static_cast<int>(rows[0] - 1);
-    s.last = static_cast<int>(rows[1] - 1);
-  }
-  if (o.has("column")) s.stiffness = o.choice("column", {"rest_length", "stiffness"}) == "stiffness";
-  if (o.has("law")) s.law = *jellyfish::schedule_law_from_string(o.choice("law", {"constant", "abs-cos", "sine", "stroke"}));
-  if (o.has("frequency")) s.frequency_hz = o.number("frequency", Range::closed(0.0, 1000.0));
-  if (o.has("amplitude")) s.amplitude = o.number("amplitude", Range::closed(-1e12, 1e12));
-  if (o.has("mean")) s.mean = o.number("mean", Range::closed(0.0, 1e12));
-  if (o.has("gamma")) s.gamma = o.number("gamma", Range{0.0, 1.0, true, false});
-  return s;
-}
-
-/// An IB2d structure: `files` = "path/stem" (IB2d's .vertex, .spring, .d_spring, .beam,
-/// .nonInv_beam, .target; relative to the working directory) or `model` = "hoover-miller" generated
-/// at `resolution` (IB2d's N); moved by `offset`; its springs scheduled by [[objects.schedules]].
-jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::string& where,
-                                           const coupling::TankSpec& tank) {
-  require_known_fields(o, {"type", "files", "model", "resolution", "offset", "schedules"}, where);
-  jellyfish::Ib2dObjectSpec spec;
-  spec.name = where;
-  std::optional<std::array<int, 2>> muscles;  ///< a generated model's muscle springs
-  if (o.has("files") == o.has("model"))
-    throw InputError(where + ": an ib2d object needs exactly one of 'files' = \"path/stem\" (IB2d's files) or "
-                             "'model' = \"hoover-miller\" (or \"hoover-miller-consistent\", its muscles per unit length)");
-  if (o.has("files")) {
-    if (o.has("resolution")) throw InputError(where + ": 'resolution' goes with 'model', not with 'files'");
-    const std::string stem = o.string("files");
-    if (stem.empty()) throw InputError(where + ": field 'files' is empty; give the path and stem, e.g. \"ib2d/jelly256\"");
-    spec.structure = io::read_ib2d_structure(stem);
-    for (const std::filesystem::path& file : io::ib2d_files_present(stem)) spec.files.push_back(file.string());
-  } else {
-    jellyfish::HooverMillerSpec hm;
-    hm.muscles_per_length = o.choice("model", {"hoover-miller", "hoover-miller-consistent"}) == "hoover-miller-consistent";
-    // By default IB2d's N of the tank's grid: mesh width 8/N m.
-    if (o.has("resolution")) {
-      hm.resolution = static_cast<int>(o.integer("resolution", 16, 4096));
-    } else {
-      const double n = std::round(8.0 * tank.cells_y / tank.height_m);
-      if (!(n >= 16 && n <= 4096))
-        throw InputError(where + ": the tank's mesh width " + io::format_number(tank.height_m / tank.cells_y) +
-                         " m gives IB2d's N = 8 m / mesh width = " + io::format_number(n) +
-                         ", outside [16, 4096]; set 'resolution'");
-      hm.resolution = static_cast<int>(n);
-    }
-    if (hm.resolution % 8 != 0)
-      throw InputError(where + ": field 'resolution' = " + std::to_string(hm.resolution) + " must be a multiple of 8");
-    const jellyfish::HooverMillerBell bell = jellyfish::hoover_miller_bell(hm);
-    spec.structure = bell.structure;
-    muscles = std::array<int, 2>{bell.first_muscle_spring, static_cast<int>(bell.structure.springs.size()) - 1};
-  }
-  if (o.has("offset")) spec.offset_m = o.vec2("offset");
-  const std::size_t schedules = o.has("schedules") ? o.array_size("schedules") : 0;  // optional (docs/ib2d.md)
-  for (std::size_t k = 0; k < schedules; ++k)
-    spec.schedules.push_back(
-        read_schedule(o.element("schedules", k), where + ": schedules[" + std::to_string(k) + "]", muscles));
-  try {
-    jellyfish::validate(spec);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
-  return spec;
-}
-
-/// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template) and
-/// rigid obstacles (circle, box, polygon), each with an optional prescribed path.
+/// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template), rigid
+/// obstacles (circle, box, polygon), each with an optional prescribed path, and IB2d structures;
+/// each type's fields are a table (scene/objects.hpp).
 void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
   const std::size_t count = c.array_size("objects");
   for (std::size_t k = 0; k < count; ++k) {
@@ -516,7 +309,7 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
     if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box, polygon or ib2d)");
     std::string type;
     try {
-      type = o.choice("type", {"jellyfish", "circle", "box", "polygon", "ib2d"});
+      type = o.choice("type", object_types());
     } catch (const InputError& e) {
       throw InputError(where + ": unknown object " + e.what());
     }

@@ -123,8 +123,12 @@ std::string allowed_values(const Parameter& p) {
   return "";
 }
 
-ParameterTable::ParameterTable(std::string name, std::string preamble, std::vector<Parameter> parameters)
-    : name_(std::move(name)), preamble_(std::move(preamble)), parameters_(std::move(parameters)) {
+ParameterTable::ParameterTable(std::string name, std::string preamble, std::vector<Parameter> parameters,
+                               std::string no_default)
+    : name_(std::move(name)),
+      preamble_(std::move(preamble)),
+      parameters_(std::move(parameters)),
+      no_default_(std::move(no_default)) {
   for (std::size_t a = 0; a < parameters_.size(); ++a)
     for (std::size_t b = a + 1; b < parameters_.size(); ++b)
       if (parameters_[a].key == parameters_[b].key)
@@ -170,7 +174,7 @@ std::string ParameterTable::reference_markdown() const {
     s << "| key | default | unit | allowed | description |\n|---|---|---|---|---|\n";
     for (const Parameter& p : parameters_) {
       if (table_of(p.key) != table) continue;
-      const std::string value = p.value.empty() ? "per scene" : "`" + markdown_cell(p.value) + "`";
+      const std::string value = p.value.empty() ? no_default_ : "`" + markdown_cell(p.value) + "`";
       s << "| `" << p.key << "` | " << value << " | " << markdown_cell(p.unit) << " | "
         << markdown_cell(allowed_values(p)) << " | " << markdown_cell(p.description) << " |\n";
     }

@@ -3,6 +3,7 @@
 #include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/scene/objects.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/scene/render_settings.hpp"
 #include "jellysim/scene/study_scenes.hpp"
@@ -33,8 +34,14 @@ std::string parameters_reference() {
       "## Jellyfish scene (`jellysim simulate`, `run`, `view`, `sweep`; scenes/jellyfish.toml)\n\n"
       "A scene file lists only what it changes; everything else keeps these defaults. The jellyfish\n"
       "experiments (`jellysim experiment NAME`) start from this scene and add fields of their own\n"
-      "(`jellysim scenes NAME` prints them). [[objects]] tables are described in docs/scenes.md.\n";
+      "(`jellysim scenes NAME` prints them). [[objects]] tables follow this section (docs/scenes.md).\n";
   page += jellyfish_scene().reference_markdown();
+  page +=
+      "\n## [[objects]] of the jellyfish scene (docs/scenes.md)\n\n"
+      "More things in the tank, one [[objects]] table each, of the `type` given; an object has only its\n"
+      "type's fields (another is refused, naming the allowed). A field without a default is required,\n"
+      "or optional without effect when absent, as its description says.\n";
+  page += objects_reference_markdown();
   page +=
       "\n## 3D rendering (`jellysim run`, `experiment stages`; the [render] section)\n\n"
       "The pipeline of §7.2–7.4: image and mesh sizes, camera, style, which files are written, and the\n"
@@ -62,6 +69,17 @@ std::string parameters_reference() {
       "These extend the jellyfish scene (every field above applies) with fields of their own, which\n"
       "follow these rules; each study sets its own defaults (`jellysim scenes NAME`).\n";
   page += without_empty_top_level(jellyfish_study_rules().reference_markdown());
+  page +=
+      "\n## Hoover-Miller bell (`jellysim experiment hoover-miller`; experiments/hoover-miller.toml)\n\n"
+      "Extends the jellyfish scene (its tank, coupling and one [[objects]] entry of type ib2d) with these\n"
+      "top-level fields; the default of each is in the definition file (docs/ib2d.md).\n";
+  page += hoover_miller_rules().reference_markdown();
+  page +=
+      "\n## Axisymmetric versus planar water (`jellysim experiment axisymmetric-vs-planar`; "
+      "experiments/axisymmetric-vs-planar.toml)\n\n"
+      "Extends the jellyfish scene (one jellyfish, no [[objects]]) with this field; its default is in the\n"
+      "definition file.\n";
+  page += axisymmetric_vs_planar_rules().reference_markdown();
   page +=
       "\n## Elastic-bar and particle-fluid scenes (`swinging-bar`, `bar-hits-wall`, `bar-hits-particle`, "
       "`sph-stream`, `mosquito-larva`, `integrator-cost`)\n\n"

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "jellysim/sim/frame_clock.hpp"
+
 namespace jellysim::studies {
 
 namespace {
@@ -49,6 +51,19 @@ double ring_aspect_ratio(const std::vector<Vec2>& ring) {
   return hi / lo;
 }
 
+namespace {
+
+/// The membrane's frame clock counts steps: the study steps by a fixed dt_s, so a frame is due every
+/// round(frame_interval / dt) steps and at the last of round(duration / dt) steps (half a step of
+/// tolerance: step counts are whole numbers).
+sim::FrameClock step_clock(const OvalMembraneSettings& s) {
+  const double total_steps = static_cast<double>(std::lround(s.duration_s / s.dt_s));
+  const double steps_per_frame = static_cast<double>(std::max(1L, std::lround(s.frame_interval_s / s.dt_s)));
+  return sim::FrameClock(steps_per_frame, total_steps, 0.5, sim::FrameClock::Ending::at_duration);
+}
+
+}  // namespace
+
 MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
                               const std::function<void(const MembraneFrame&)>& on_frame) {
   const auto start = std::chrono::steady_clock::now();
@@ -63,24 +78,27 @@ MembraneRun run_oval_membrane(const OvalMembraneSettings& s,
   elastic::Body body = make_oval_membrane(s);
   coupling::ImmersedBoundary ib(*fluid, body, s.coupling);
   MembraneRun run;
-  auto record = [&]() {
+  const coupling::StabilityLimits limits{};
+  long steps = 0;
+  sim::ClockedRun loop;
+  loop.time = [&] { return static_cast<double>(steps); };
+  loop.step = [&](double) -> sim::StepResult {
+    ib.step(s.dt_s);
+    ++steps;
+    if (std::string problem = coupling::check_stability(fluid->state(), body, limits); !problem.empty())
+      return sim::StepResult::failed_with(problem + " at t = " + std::to_string(ib.time_s()) + " s (step " +
+                                          std::to_string(steps) + ")");
+    return {};
+  };
+  loop.frame = [&](std::int64_t) -> std::string {
     MembraneFrame f{ib.time_s(), polygon_area(body.points.position), ring_aspect_ratio(body.points.position),
                     body.points.position};
     if (on_frame) on_frame(f);
     run.frames.push_back(std::move(f));
+    return {};
   };
-  record();
-  const coupling::StabilityLimits limits{};
-  const long total_steps = std::lround(s.duration_s / s.dt_s);
-  const long steps_per_frame = std::max(1L, std::lround(s.frame_interval_s / s.dt_s));
-  for (long n = 1; n <= total_steps; ++n) {
-    ib.step(s.dt_s);
-    if (std::string problem = coupling::check_stability(fluid->state(), body, limits); !problem.empty()) {
-      run.failure = problem + " at t = " + std::to_string(ib.time_s()) + " s (step " + std::to_string(n) + ")";
-      break;
-    }
-    if (n % steps_per_frame == 0 || n == total_steps) record();
-  }
+  sim::FrameClock clock = step_clock(s);
+  run.failure = sim::run_frames(clock, loop).failure;
   run.steps = ib.steps();
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;

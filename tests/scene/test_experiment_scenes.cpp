@@ -215,3 +215,28 @@ TEST(ExperimentScenes, ParticleScenesOwnFieldsAreEnforced) {
 }
 
 }  // namespace
+
+// One place for the Figure 8.1 bar: the bar scenes extend scenes/bar.toml, whose [bar] is
+// elastic::BarSpec's defaults (and swinging-bar's extra [bar] fields are BarSpec's too).
+TEST(ExperimentScenes, BarScenesExtendOneBarWhoseDefaultsAreBarSpecs) {
+  const elastic::BarSpec spec{};
+  const io::Config base = io::Config::parse(experiments::definition_text("scenes/bar.toml"), "scenes/bar.toml");
+  const elastic::BarSpec read = scene::read_bar(base);
+  const io::Config swinging = experiment_config("swinging-bar");
+  const scene::Reader r(swinging, scene::particle_scene_rules());
+  const std::pair<double, double> read_and_default[] = {
+      {read.length, spec.length},         {read.width, spec.width},
+      {read.segments, spec.segments},     {read.point_mass, spec.point_mass},
+      {read.stiffness, spec.stiffness},   {read.pivot.x, spec.pivot.x},
+      {read.pivot.y, spec.pivot.y},       {read.gravity.x, spec.gravity.x},
+      {read.gravity.y, spec.gravity.y},   {r.number("bar.angular_stiffness"), spec.angular_stiffness},
+      {r.number("bar.angle_deg"), spec.angle_rad}, {r.number("bar.drag"), spec.drag}};
+  for (std::size_t k = 0; k < std::size(read_and_default); ++k)
+    EXPECT_EQ(read_and_default[k].first, read_and_default[k].second) << "field " << k;
+  for (const char* name : {"swinging-bar", "bar-hits-wall", "bar-hits-particle", "sph-stream"}) {
+    EXPECT_EQ(experiments::find_experiment(name).base_path, "scenes/bar.toml") << name;
+    const std::string own(experiments::definition_text(experiments::find_experiment(name).definition_path));
+    for (const char* field : {"length", "width", "segments", "point_mass", "stiffness", "pivot", "gravity"})
+      EXPECT_FALSE(io::Config::parse(own, name).has(std::string("bar.") + field)) << name << " repeats bar." << field;
+  }
+}

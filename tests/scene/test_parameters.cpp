@@ -15,6 +15,7 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/live_parameters.hpp"
+#include "jellysim/scene/objects.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
@@ -253,6 +254,70 @@ TEST(SceneParameters, ParticleScenesFollowOneSetOfRules) {
     }
   }
   for (const Parameter& p : rules.parameters()) EXPECT_TRUE(used.count(p.key)) << p.key << " is a rule no scene uses";
+}
+
+// The [[objects]] tables' documented defaults are what the readers leave when a field is absent
+// (the specs' own defaults): an object giving every default reads the same as one giving none.
+std::string with_every_default(const std::string& type, std::string toml) {
+  for (const Parameter& p : scene::object_parameters(type).parameters())
+    if (!p.value.empty() && p.key != "type" && p.type != Type::tables) toml += p.key + " = " + p.value + "\n";
+  return toml;
+}
+
+TEST(SceneParameters, ObjectTablesDefaultsAreTheReadersDefaults) {
+  const std::pair<std::string, std::string> obstacles[] = {
+      {"circle", "type = \"circle\"\ncentre = [0.5, 0.5]\nradius = 0.1\n"},
+      {"box", "type = \"box\"\ncentre = [0.5, 0.5]\nsize = [0.1, 0.2]\n"}};
+  for (const auto& [type, minimal] : obstacles) {
+    const jellyfish::ObstacleSpec a = scene::read_obstacle(io::Config::parse(minimal, type), type, type);
+    const jellyfish::ObstacleSpec b =
+        scene::read_obstacle(io::Config::parse(with_every_default(type, minimal), type), type, type);
+    EXPECT_EQ(a.tether_stiffness_n_per_m2, b.tether_stiffness_n_per_m2) << type;
+    EXPECT_EQ(a.angle_rad, b.angle_rad) << type;
+    EXPECT_EQ(a.motion.velocity_m_per_s.x, b.motion.velocity_m_per_s.x) << type;
+    EXPECT_EQ(a.motion.amplitude_m.y, b.motion.amplitude_m.y) << type;
+    EXPECT_EQ(a.motion.frequency_hz, b.motion.frequency_hz) << type;
+  }
+  const std::string ib2d = "type = \"ib2d\"\nmodel = \"hoover-miller\"\nresolution = 64\n";
+  const std::string schedule = "[[schedules]]\nsprings = \"muscles\"\n";
+  const coupling::TankSpec tank{};
+  const jellyfish::Ib2dObjectSpec a = scene::read_ib2d_object(io::Config::parse(ib2d + schedule, "a"), "a", tank);
+  const jellyfish::Ib2dObjectSpec b = scene::read_ib2d_object(
+      io::Config::parse(with_every_default("ib2d", ib2d) + with_every_default("schedules", schedule), "b"), "b", tank);
+  ASSERT_EQ(a.schedules.size(), 1u);
+  ASSERT_EQ(b.schedules.size(), 1u);
+  EXPECT_EQ(a.offset_m.x, b.offset_m.x);
+  const jellyfish::SpringSchedule& sa = a.schedules[0];
+  const jellyfish::SpringSchedule& sb = b.schedules[0];
+  EXPECT_EQ(sa.stiffness, sb.stiffness);
+  EXPECT_EQ(sa.law, sb.law);
+  EXPECT_EQ(sa.frequency_hz, sb.frequency_hz);
+  EXPECT_EQ(sa.amplitude, sb.amplitude);
+  EXPECT_EQ(sa.mean, sb.mean);
+  EXPECT_EQ(sa.gamma, sb.gamma);
+}
+
+void expect_object_rejected(const std::string& message, const std::string& key, const std::string& allowed) {
+  EXPECT_NE(message.find("'" + key + "'"), std::string::npos) << message;
+  EXPECT_NE(message.find(allowed), std::string::npos) << message;
+}
+
+// An object's fields are its table's: one that is not is refused, naming the allowed ones, and a
+// value out of its range names the field and the range.
+TEST(SceneParameters, ObjectFieldsFollowTheirTables) {
+  const std::string circle = "type = \"circle\"\ncentre = [0.5, 0.5]\n";
+  expect_object_rejected(error_of([&] {
+                    scene::read_obstacle(io::Config::parse(circle + "radius = 0.1\nsize = [1.0, 1.0]\n", "c"), "circle",
+                                         "objects[0] (circle)");
+                  }),
+                  "size", "allowed: type, centre, radius, tether_stiffness");
+  expect_object_rejected(error_of([&] {
+                    scene::read_obstacle(io::Config::parse(circle + "radius = -0.1\n", "c"), "circle", "c");
+                  }),
+                  "radius", "(0, inf)");
+  for (const std::string& type : scene::object_types())
+    EXPECT_NE(scene::parameters_reference().find("### [[objects]] type = \"" + type + "\""), std::string::npos) << type;
+  EXPECT_NE(scene::parameters_reference().find("### [[objects.schedules]]"), std::string::npos);
 }
 
 }  // namespace

@@ -85,4 +85,20 @@ SteeringScene read_steering(const io::Config& c);
 /// coupling-stability: the Δt caps tried.
 std::vector<double> read_coupling_stability_steps(const io::Config& c);
 
+// ---- experiments extending the jellyfish scene with top-level fields of their own -------------
+
+/// hoover-miller (docs/ib2d.md): re, grid, cycles, muscles (rules; defaults in its definition).
+const ParameterTable& hoover_miller_rules();
+struct HooverMillerFields {
+  double re = 150.0;
+  int grid = 256;                ///< IB2d's N, a multiple of 8
+  int cycles = 3;
+  std::string muscles = "ib2d";  ///< "ib2d" or "per-length"
+};
+HooverMillerFields read_hoover_miller_fields(const io::Config& c);
+
+/// axisymmetric-vs-planar: cycles (rules; the default in its definition).
+const ParameterTable& axisymmetric_vs_planar_rules();
+int read_axisymmetric_vs_planar_cycles(const io::Config& c);
+
 }  // namespace jellysim::scene

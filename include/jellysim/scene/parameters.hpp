@@ -61,7 +61,10 @@ Parameter vec2(std::string key, std::string value, std::string unit, io::Range r
 /// the top-level keys in order of first appearance.
 class ParameterTable {
  public:
-  ParameterTable(std::string name, std::string preamble, std::vector<Parameter> parameters);
+  /// `no_default`: what the reference page shows for a parameter without a default (a table of
+  /// rules: "per scene"; the [[objects]] fields: "none").
+  ParameterTable(std::string name, std::string preamble, std::vector<Parameter> parameters,
+                 std::string no_default = "per scene");
 
   const std::string& name() const { return name_; }
   const std::vector<Parameter>& parameters() const { return parameters_; }
@@ -83,6 +86,7 @@ class ParameterTable {
   std::string name_;
   std::string preamble_;
   std::vector<Parameter> parameters_;
+  std::string no_default_;
 };
 
 /// "(0, 5]", "[2, 1000]", "one of: fft, direct", "true or false": the allowed values in words.
