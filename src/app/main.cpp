@@ -13,6 +13,7 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/resolve.hpp"
 
 #include "jellysim/viewer/viewer.hpp"
 #ifdef JELLYSIM_MPI
@@ -49,10 +50,7 @@ struct RunOptions {
   bool quiet = false;
   /// Options that set a key some experiments have (e.g. driven-cavity): --solver, --re, --grid,
   /// --steady-tolerance: (option, key, value).
-  struct Shorthand {
-    std::string option, key, value;
-  };
-  std::vector<Shorthand> shorthands;
+  std::vector<js::scene::Shorthand> shorthands;
   /// `simulate --checkpoint-every` / `--resume` (null: none); with `resume`, out is the run's directory.
   std::shared_ptr<const js::experiments::Checkpointing> checkpoints{};
   bool resume = false;
@@ -175,28 +173,21 @@ js::sim::ProgressCallback make_progress(bool enabled) {
   };
 }
 
-/// Resolves the configuration (defaults, scene file, --set, --duration), validates it, and only
-/// then creates the output directory and runs.
-int run_experiment(const js::experiments::Experiment& e, const std::optional<js::io::Config>& scene_file,
-                   const RunOptions& o) {
-  js::experiments::Context ctx{js::experiments::default_config(e), make_progress(!o.quiet), o.checkpoints};
-  if (scene_file) ctx.config.merge(*scene_file);
-  for (const std::string& s : o.sets) {
-    const std::string key = s.substr(0, s.find('='));
-    if (key == "scene")  // the kind picks the parameter table: it comes from the file, not --set
-      throw js::InputError("--set scene: the scene kind cannot be changed by --set; give a scene file instead");
-    if (o.duration && key == "duration")
-      throw js::InputError("--duration and --set duration both give the duration: give it once");
-    ctx.config.set(s);
-  }
-  if (o.duration) {
-    if (!ctx.config.has("duration")) throw js::InputError("--duration: experiment '" + e.name + "' has no duration");
-    ctx.config.set("duration=" + js::io::format_double(*o.duration));
-  }
-  for (const auto& [option, key, value] : o.shorthands) {
-    if (!ctx.config.has(key)) throw js::InputError("--" + option + ": experiment '" + e.name + "' has no " + key);
-    ctx.config.set(key + "=" + value);
-  }
+/// A scene file given to a command: `path`'s configuration, and the kind it must be (none: any).
+struct SceneFile {
+  std::optional<js::io::Config> config;
+  std::string path;
+  std::string expected_kind{};
+};
+
+/// Resolves the configuration (defaults, scene file, --set, --duration: scene::resolve_config),
+/// validates it, and only then creates the output directory and runs.
+int run_experiment(const js::experiments::Experiment& e, const SceneFile& scene, const RunOptions& o) {
+  const js::scene::ConfigSources sources{scene.config, scene.path, scene.expected_kind, false, o.sets, o.duration,
+                                         o.shorthands};
+  js::experiments::Context ctx{
+      js::scene::resolve_config(js::experiments::default_config(e), sources, "experiment '" + e.name + "'"),
+      make_progress(!o.quiet), o.checkpoints};
   auto run = e.prepare(ctx);
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
@@ -238,12 +229,12 @@ int run_checkpointed_simulation(const std::string& command, const std::string& s
   how.every_s = every_s;
   how.sets = o.sets;
   if (o.duration) how.duration = js::io::format_double(*o.duration);
-  std::optional<js::io::Config> scene;
+  SceneFile scene{{}, scene_path};
   if (!scene_path.empty()) {
     how.scene_text = js::io::Config::read_scene_text(scene_path);
     how.scene_source = scene_path;
-    scene = js::io::Config::parse(how.scene_text, scene_path);
-    if (!scene->has("scene") || scene->string("scene") != "jellyfish")
+    scene.config = js::io::Config::parse(how.scene_text, scene_path);
+    if (!scene.config->has("scene") || scene.config->string("scene") != "jellyfish")
       throw js::InputError("--checkpoint-every: " + scene_path + " is not a jellyfish scene (scene = \"jellyfish\"); "
                            "only jellyfish simulations write checkpoints");
   }
@@ -264,8 +255,8 @@ int resume_simulation(const std::string& command, const std::string& dir, bool q
   o.sets = c.sets;
   if (!c.duration.empty()) o.duration = std::strtod(c.duration.c_str(), nullptr);  // written by format_double: exact
   o.resume = true;
-  std::optional<js::io::Config> scene;
-  if (!c.scene_text.empty()) scene = js::io::Config::parse(c.scene_text, c.scene_source);
+  SceneFile scene{{}, c.scene_source};
+  if (!c.scene_text.empty()) scene.config = js::io::Config::parse(c.scene_text, c.scene_source);
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
   checkpoints->how = std::move(c);
   checkpoints->resume = true;
@@ -275,12 +266,13 @@ int resume_simulation(const std::string& command, const std::string& dir, bool q
 }
 
 int run_scene(const std::string& scene_path, const RunOptions& o, const std::string& default_scene) {
-  std::optional<js::io::Config> scene;
+  SceneFile scene{{}, scene_path};
   std::string name = default_scene;
   if (!scene_path.empty()) {
-    scene = js::io::Config::load(scene_path);
-    if (!scene->has("scene")) throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
-    name = scene->string("scene");
+    scene.config = js::io::Config::load(scene_path);
+    if (!scene.config->has("scene"))
+      throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
+    name = scene.config->string("scene");
     // `run` on a jellyfish scene renders it too: the animation job extends the jellyfish scene.
     if (default_scene == "animation" && name == "jellyfish") name = "animation";
   }
@@ -399,7 +391,10 @@ std::string read_text_file(const std::string& path) {
 
 /// Loads the scene like `simulate` does (built-in jellyfish scene, scene file, --set) and runs the viewer.
 int run_view(ViewCommand& v) {
-  const js::io::Config config = js::scene::load_jellyfish_scene(v.scene_path, v.sets);
+  js::scene::ConfigSources sources{{}, v.scene_path, "jellyfish", false, v.sets};
+  if (!v.scene_path.empty()) sources.scene_file = js::io::Config::load(v.scene_path);
+  const js::io::Config config =
+      js::scene::resolve_config(js::scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
   const js::jellyfish::SwimSettings settings = js::scene::read_swim_settings(config);
   const std::string name = v.scene_path.empty() ? "built-in jellyfish" : v.scene_path;
   auto& o = v.options;
@@ -605,13 +600,13 @@ int main(int argc, char** argv) {
         for (double f : sweep_frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
         sweep_opts.sets.push_back("sweep.frequencies=[" + list + "]");
       }
-      std::optional<js::io::Config> scene;
-      if (!sweep_scene_path.empty()) scene = js::io::Config::load(sweep_scene_path);
+      SceneFile scene{{}, sweep_scene_path};
+      if (!sweep_scene_path.empty()) scene.config = js::io::Config::load(sweep_scene_path);
       return run_experiment(js::experiments::find_experiment("sweep"), scene, sweep_opts);
     }
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
-      for (const RunOptions::Shorthand& s : {RunOptions::Shorthand{"solver", "solver", solver}, {"re", "re", re},
+      for (const js::scene::Shorthand& s : {js::scene::Shorthand{"solver", "solver", solver}, {"re", "re", re},
                                              {"grid", "grid", grid}, {"cycles", "cycles", cycles},
                                              {"grids", "grids", grids.empty() ? grids : toml_string(grids)},
                                              {"steady-tolerance", "cavity.steady_tolerance", steady_tolerance}}) {
@@ -619,15 +614,12 @@ int main(int argc, char** argv) {
       }
       if (threads > 0) exp_opts.shorthands.push_back({"threads", "run.threads", std::to_string(threads)});
       const js::experiments::Experiment& e = js::experiments::find_experiment(exp_name);
-      std::optional<js::io::Config> scene;
+      SceneFile scene{{}, exp_scene_path, "jellyfish"};
       if (!exp_scene_path.empty()) {
         if (e.base_path != "scenes/jellyfish.toml")
           throw js::InputError("experiment '" + exp_name + "' takes no scene file ('" + exp_scene_path +
                                "'): only experiments on the jellyfish scene do");
-        scene = js::io::Config::load(exp_scene_path);
-        if (scene->has("scene") && scene->string("scene") != "jellyfish")
-          throw js::InputError(exp_scene_path + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
-                               scene->string("scene") + "'");
+        scene.config = js::io::Config::load(exp_scene_path);
       }
       return run_experiment(e, scene, exp_opts);
     }
