@@ -56,16 +56,6 @@ struct RunOptions {
   bool resume = false;
 };
 
-/// A command-line value as a TOML basic string (quotes and backslashes escaped).
-std::string toml_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
-
 /// CLI::Range, which lets NaN through (`--checkpoint-every nan` never checkpointed): a number in
 /// [lo, hi].
 CLI::Validator finite_range(double lo, double hi) {
@@ -152,6 +142,22 @@ void add_checkpoint_options(CLI::App& cmd, CheckpointOptions& c, const std::stri
       ->excludes("--set")
       ->excludes("--duration")
       ->excludes("--out");
+}
+
+/// The shorthand options the experiments declare (experiments::shorthand_options(): driven-cavity's
+/// --re, the SPH experiments' --threads, ...); each one given is recorded as (name, value) when parsed.
+void add_shorthand_options(CLI::App& cmd, std::vector<std::pair<std::string, std::string>>& given) {
+  for (const js::experiments::ShorthandOption& o : js::experiments::shorthand_options()) {
+    const auto record = [&given, name = o.name](const std::string& value) { given.emplace_back(name, value); };
+    if (o.max_count > 0) {
+      cmd.add_option_function<int>("--" + o.name, [record](int n) { record(std::to_string(n)); }, o.help)
+          ->check(CLI::Range(o.min_count, o.max_count));
+    } else {
+      CLI::Option* option = cmd.add_option_function<std::string>(
+          "--" + o.name, [record](const std::string& value) { if (!value.empty()) record(value); }, o.help);
+      if (!o.type_name.empty()) option->type_name(o.type_name);
+    }
+  }
 }
 
 /// Terminal progress: simulated time, steps and ETA, redrawn at most five times a second.
@@ -524,21 +530,8 @@ int main(int argc, char** argv) {
                   "e.g. convergence)")
       ->check(CLI::ExistingFile);
   add_run_options(*exp, exp_opts, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
-  std::string solver, re, grid;
-  exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
-  exp->add_option("--re", re, "Reynolds number (driven-cavity)");
-  exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
-  std::string grids, cycles;
-  exp->add_option("--grids", grids, "Grids of a convergence study, coarsest first: NXxNY,... (convergence)")
-      ->type_name("LIST");
-  exp->add_option("--cycles", cycles, "Contraction cycles per run (convergence, hoover-miller, axisymmetric-vs-planar)")
-      ->type_name("N");
-  std::string steady_tolerance;
-  exp->add_option("--steady-tolerance", steady_tolerance,
-                  "Stop when max|du/dt| L/U^2 falls below this (driven-cavity: cavity.steady_tolerance)");
-  int threads = 0;
-  exp->add_option("--threads", threads, "Threads for the SPH experiments (run.threads; default: one per core)")
-      ->check(CLI::Range(1, 64));
+  std::vector<std::pair<std::string, std::string>> shorthands;  // the experiments' own options, as given
+  add_shorthand_options(*exp, shorthands);
 
   BatchCommand batch_cmd;
   auto* batch = app.add_subcommand(
@@ -606,14 +599,8 @@ int main(int argc, char** argv) {
     }
     if (exp->parsed()) {
       if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
-      for (const js::scene::Shorthand& s : {js::scene::Shorthand{"solver", "solver", solver}, {"re", "re", re},
-                                             {"grid", "grid", grid}, {"cycles", "cycles", cycles},
-                                             {"grids", "grids", grids.empty() ? grids : toml_string(grids)},
-                                             {"steady-tolerance", "cavity.steady_tolerance", steady_tolerance}}) {
-        if (!s.value.empty()) exp_opts.shorthands.push_back(s);
-      }
-      if (threads > 0) exp_opts.shorthands.push_back({"threads", "run.threads", std::to_string(threads)});
       const js::experiments::Experiment& e = js::experiments::find_experiment(exp_name);
+      exp_opts.shorthands = js::experiments::shorthands_for(e, shorthands);
       SceneFile scene{{}, exp_scene_path, "jellyfish"};
       if (!exp_scene_path.empty()) {
         if (e.base_path != "scenes/jellyfish.toml")

@@ -2,6 +2,8 @@
 // sources, its rules and their messages, and the built-in jellyfish scene it starts from.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "scene_test_util.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -57,6 +59,28 @@ TEST(Resolve, RulesAndTheirMessages) {
   duration.duration = 1.0;
   EXPECT_EQ(error_of([&] { scene::resolve_config(durationless, duration, "experiment 'x'"); }),
             "--duration: experiment 'x' has no duration");
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 36: the shorthand options of `jellysim experiment` (--re, --threads, ...) are declared by
+// the experiments that take them: exactly those whose configuration has the option's key.
+TEST(Resolve, EachExperimentDeclaresTheShorthandOptionsItsConfigurationHas) {
+  for (const experiments::Experiment& e : experiments::all_experiments()) {
+    const io::Config defaults = experiments::default_config(e);
+    for (const experiments::ShorthandOption& o : experiments::shorthand_options()) {
+      const bool declared = std::find(e.shorthands.begin(), e.shorthands.end(), o.name) != e.shorthands.end();
+      EXPECT_EQ(declared, defaults.has(o.key)) << e.name << " --" << o.name;
+    }
+  }
+  const experiments::Experiment& bar = experiments::find_experiment("swinging-bar");
+  EXPECT_EQ(error_of([&] { experiments::shorthands_for(bar, {{"re", "100"}}); }),
+            "--re: experiment 'swinging-bar' has no re");
+  const auto grids = experiments::shorthands_for(experiments::find_experiment("convergence"), {{"grids", "24x32"}});
+  ASSERT_EQ(grids.size(), 1u);
+  EXPECT_EQ(grids[0].key + "=" + grids[0].value, "grids=\"24x32\"");
 }
 
 }  // namespace
