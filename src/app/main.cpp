@@ -473,148 +473,178 @@ int run_batch(const BatchCommand& b) {
   return js::experiments::run_batch_threaded(batch, b.threads, b.quiet);
 }
 
-}  // namespace
+/// A command of `jellysim`: its name and help, `define` adds its options to its subcommand and
+/// returns what runs it once parsed. A new command is a row of commands().
+struct Command {
+  std::string name;
+  std::string help;
+  std::function<std::function<int()>(CLI::App&)> define;
+};
 
-int main(int argc, char** argv) {
-  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
-  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
-  std::signal(SIGPIPE, SIG_IGN);
-  CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", JELLYSIM_VERSION);
+/// `run` and `simulate`: a scene (default: their built-in experiment), checkpoints, resume.
+std::function<int()> define_scene_command(CLI::App& cmd, const std::string& command, const std::string& scene_help,
+                                          const std::string& default_out, const std::string& set_example,
+                                          const std::string& checkpoint_more) {
+  struct State {
+    RunOptions options;
+    std::string scene_path;
+    CheckpointOptions checkpoints;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("scene", s->scene_path, scene_help)->check(CLI::ExistingFile);
+  add_run_options(cmd, s->options, default_out, set_example);
+  add_checkpoint_options(cmd, s->checkpoints, checkpoint_more);
+  return [s, command] {
+    if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options.quiet);
+    if (s->checkpoints.every > 0)
+      return run_checkpointed_simulation(command, s->scene_path, s->options, s->checkpoints.every);
+    return run_scene(s->scene_path, s->options, checkpointed_experiment(command).name);
+  };
+}
 
-  RunOptions run_opts;
-  std::string scene_path;
-  auto* run = app.add_subcommand("run", "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its "
-      "outputs; for a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json");
-  run->add_option("scene", scene_path, "Scene file (TOML); omitted: the built-in default scene")->check(CLI::ExistingFile);
-  add_run_options(*run, run_opts, "out", "--set jellyfish.frequency=0.9 --set render.width=320");
-  CheckpointOptions run_checkpoints;
-  add_checkpoint_options(*run, run_checkpoints,
-                         " (jellyfish scenes; kept until the animation is written too: a run stopped while rendering "
-                         "renders again on --resume)");
-
-  RunOptions sim_opts;
-  std::string sim_scene_path;
-  auto* simulate = app.add_subcommand(
-      "simulate", "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, "
-                  "slices.csv, plots, a picture and VTK fields per frame, summary.json");
-  simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
+std::function<int()> define_sweep(CLI::App& cmd) {
+  struct State {
+    RunOptions options;
+    std::string scene_path;
+    std::vector<double> frequencies;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("scene", s->scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
-  add_run_options(*simulate, sim_opts, "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false");
-  CheckpointOptions sim_checkpoints;
-  add_checkpoint_options(*simulate, sim_checkpoints, "");
+  cmd.add_option("--frequencies", s->frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")->delimiter(',');
+  add_run_options(cmd, s->options, "out/sweep", "--set sweep.frequencies=[0.5,0.9] --set tank.viscosity=2e-5");
+  return [s] {
+    if (!s->frequencies.empty()) {
+      std::string list;
+      for (double f : s->frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
+      s->options.sets.push_back("sweep.frequencies=[" + list + "]");
+    }
+    SceneFile scene{{}, s->scene_path};
+    if (!s->scene_path.empty()) scene.config = js::io::Config::load(s->scene_path);
+    return run_experiment(js::experiments::find_experiment("sweep"), scene, s->options);
+  };
+}
 
-  RunOptions sweep_opts;
-  std::string sweep_scene_path;
-  std::vector<double> sweep_frequencies;
-  auto* sweep = app.add_subcommand(
-      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, on the "
-               "built-in scene or a scene file, each frequency at sweep.placements sub-cell positions of the bell "
-               "(default 1; 8 for the thesis's chaotic coarse tank): sweep.csv (mean and spread), sweep_runs.csv, "
-               "sweep.png, trajectories.png, summary.json");
-  sweep->add_option("scene", sweep_scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
+std::function<int()> define_experiment(CLI::App& cmd) {
+  struct State {
+    RunOptions options;
+    std::string name, scene_path;
+    std::vector<std::pair<std::string, std::string>> shorthands;  // the experiments' own options, as given
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("name", s->name, "Experiment name")->required();
+  cmd.add_option("scene", s->scene_path,
+                 "Jellyfish scene file laid over the experiment's scene (experiments that extend the jellyfish scene, "
+                 "e.g. convergence)")
       ->check(CLI::ExistingFile);
-  sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")
-      ->delimiter(',');
-  add_run_options(*sweep, sweep_opts, "out/sweep", "--set sweep.frequencies=[0.5,0.9] --set tank.viscosity=2e-5");
+  add_run_options(cmd, s->options, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
+  add_shorthand_options(cmd, s->shorthands);
+  return [s] {
+    if (s->options.out.empty()) s->options.out = "out/" + s->name;
+    const js::experiments::Experiment& e = js::experiments::find_experiment(s->name);
+    s->options.shorthands = js::experiments::shorthands_for(e, s->shorthands);
+    SceneFile scene{{}, s->scene_path, "jellyfish"};
+    if (!s->scene_path.empty()) {
+      if (e.base_path != "scenes/jellyfish.toml")
+        throw js::InputError("experiment '" + s->name + "' takes no scene file ('" + s->scene_path +
+                             "'): only experiments on the jellyfish scene do");
+      scene.config = js::io::Config::load(s->scene_path);
+    }
+    return run_experiment(e, scene, s->options);
+  };
+}
 
-  RunOptions exp_opts;
-  std::string exp_name;
-  auto* exp = app.add_subcommand("experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." +
-                                                   experiment_list());
-  exp->add_option("name", exp_name, "Experiment name")->required();
-  std::string exp_scene_path;
-  exp->add_option("scene", exp_scene_path,
-                  "Jellyfish scene file laid over the experiment's scene (experiments that extend the jellyfish scene, "
-                  "e.g. convergence)")
-      ->check(CLI::ExistingFile);
-  add_run_options(*exp, exp_opts, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
-  std::vector<std::pair<std::string, std::string>> shorthands;  // the experiments' own options, as given
-  add_shorthand_options(*exp, shorthands);
+std::function<int()> define_scenes(CLI::App& cmd) {
+  struct State {
+    std::string name;
+    bool reference = false;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("name", s->name, "Scene or experiment to print (`run` and `simulate`: their built-in scenes)");
+  cmd.add_flag("--reference", s->reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
+  return [s] {
+    if (!s->reference) return list_definitions(s->name);
+    std::cout << js::scene::parameters_reference();
+    return 0;
+  };
+}
 
-  BatchCommand batch_cmd;
-  auto* batch = app.add_subcommand(
-      "batch", "Many jellyfish runs from a plan file (a product or list of --set overrides), each into "
-               "DIR/runs/NNNN/ as `simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under "
-               "mpirun; rerun to resume a killed batch (docs/batch.md)");
-  add_batch_options(*batch, batch_cmd);
-
-  ViewCommand view_cmd;
-  auto* view = app.add_subcommand(
-      "view", "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, "
-              "drag jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display "
-              "(or xvfb-run -a)");
-  add_view_options(*view, view_cmd);
-
-  std::string show_name;
-  auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
-                                              "(every parameter, its default and meaning)");
-  scenes->add_option("name", show_name, "Scene or experiment to print (`run` and `simulate`: their built-in scenes)");
-  bool reference = false;
-  scenes->add_flag("--reference", reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
-
-  int hm_resolution = 256;
-  std::string hm_stem;
-  auto* ib2d = app.add_subcommand(
-      "ib2d-jellyfish", "Write the Hoover-Miller jellyfish bell (IB2d's convergence example) as IB2d structure files "
-                        "STEM.vertex, .spring, .nonInv_beam, .target (docs/ib2d.md)");
-  ib2d->add_option("--resolution", hm_resolution, "IB2d's N, a multiple of 8 in [16, 4096]: 0.375 N x 1.25 N cells")
+std::function<int()> define_ib2d(CLI::App& cmd) {
+  struct State {
+    int resolution = 256;
+    std::string stem;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("--resolution", s->resolution, "IB2d's N, a multiple of 8 in [16, 4096]: 0.375 N x 1.25 N cells")
       ->capture_default_str()
       ->check(CLI::Range(16, 4096));
-  ib2d->add_option("--out", hm_stem, "Path and stem of the files, e.g. scenes/hoover-miller/jelly256")->required();
+  cmd.add_option("--out", s->stem, "Path and stem of the files, e.g. scenes/hoover-miller/jelly256")->required();
+  return [s] { return write_hoover_miller_files(s->resolution, s->stem); };
+}
 
+/// Every command, in the order `jellysim --help` lists them.
+std::vector<Command> commands() {
+  return {
+      {"run",
+       "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its outputs; for "
+       "a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json",
+       [](CLI::App& cmd) {
+         return define_scene_command(cmd, "run", "Scene file (TOML); omitted: the built-in default scene", "out",
+                                     "--set jellyfish.frequency=0.9 --set render.width=320",
+                                     " (jellyfish scenes; kept until the animation is written too: a run stopped "
+                                     "while rendering renders again on --resume)");
+       }},
+      {"simulate",
+       "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, slices.csv, plots, a "
+       "picture and VTK fields per frame, summary.json",
+       [](CLI::App& cmd) {
+         return define_scene_command(cmd, "simulate",
+                                     "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene",
+                                     "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false", "");
+       }},
+      {"sweep",
+       "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, on the built-in scene "
+       "or a scene file, each frequency at sweep.placements sub-cell positions of the bell (default 1; 8 for the "
+       "thesis's chaotic coarse tank): sweep.csv (mean and spread), sweep_runs.csv, sweep.png, trajectories.png, "
+       "summary.json",
+       define_sweep},
+      {"experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." + experiment_list(),
+       define_experiment},
+      {"batch",
+       "Many jellyfish runs from a plan file (a product or list of --set overrides), each into DIR/runs/NNNN/ as "
+       "`simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under mpirun; rerun to resume "
+       "a killed batch (docs/batch.md)",
+       [](CLI::App& cmd) {
+         auto b = std::make_shared<BatchCommand>();
+         add_batch_options(cmd, *b);
+         return std::function<int()>([b] { return run_batch(*b); });
+       }},
+      {"view",
+       "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, drag "
+       "jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display (or xvfb-run -a)",
+       [](CLI::App& cmd) {
+         auto v = std::make_shared<ViewCommand>();
+         add_view_options(cmd, *v);
+         return std::function<int()>([v] { return run_view(*v); });
+       }},
+      {"scenes", "List built-in scenes and experiments, or print one's definition (every parameter, its default and "
+                 "meaning)",
+       define_scenes},
+      {"ib2d-jellyfish", "Write the Hoover-Miller jellyfish bell (IB2d's convergence example) as IB2d structure files "
+                         "STEM.vertex, .spring, .nonInv_beam, .target (docs/ib2d.md)",
+       define_ib2d},
+  };
+}
+
+/// Runs the parsed command; a usage or input error is exit 2, a failed run exit 1.
+int run_parsed(const std::vector<std::pair<CLI::App*, std::function<int()>>>& runs) {
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
-  }
-  try {
-    for (const CLI::App* command : app.get_subcommands())
+    for (const auto& [command, run] : runs) {
+      if (!command->parsed()) continue;
       if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
-    if (run->parsed()) {
-      if (!run_checkpoints.resume_dir.empty()) return resume_simulation("run", run_checkpoints.resume_dir, run_opts.quiet);
-      if (run_checkpoints.every > 0) return run_checkpointed_simulation("run", scene_path, run_opts, run_checkpoints.every);
-      return run_scene(scene_path, run_opts, "animation");
+      return run();
     }
-    if (simulate->parsed()) {
-      if (!sim_checkpoints.resume_dir.empty()) return resume_simulation("simulate", sim_checkpoints.resume_dir, sim_opts.quiet);
-      if (sim_checkpoints.every > 0)
-        return run_checkpointed_simulation("simulate", sim_scene_path, sim_opts, sim_checkpoints.every);
-      return run_scene(sim_scene_path, sim_opts, "jellyfish");
-    }
-    if (view->parsed()) return run_view(view_cmd);
-    if (batch->parsed()) return run_batch(batch_cmd);
-    if (ib2d->parsed()) return write_hoover_miller_files(hm_resolution, hm_stem);
-    if (sweep->parsed()) {
-      if (!sweep_frequencies.empty()) {
-        std::string list;
-        for (double f : sweep_frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
-        sweep_opts.sets.push_back("sweep.frequencies=[" + list + "]");
-      }
-      SceneFile scene{{}, sweep_scene_path};
-      if (!sweep_scene_path.empty()) scene.config = js::io::Config::load(sweep_scene_path);
-      return run_experiment(js::experiments::find_experiment("sweep"), scene, sweep_opts);
-    }
-    if (exp->parsed()) {
-      if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
-      const js::experiments::Experiment& e = js::experiments::find_experiment(exp_name);
-      exp_opts.shorthands = js::experiments::shorthands_for(e, shorthands);
-      SceneFile scene{{}, exp_scene_path, "jellyfish"};
-      if (!exp_scene_path.empty()) {
-        if (e.base_path != "scenes/jellyfish.toml")
-          throw js::InputError("experiment '" + exp_name + "' takes no scene file ('" + exp_scene_path +
-                               "'): only experiments on the jellyfish scene do");
-        scene.config = js::io::Config::load(exp_scene_path);
-      }
-      return run_experiment(e, scene, exp_opts);
-    }
-    if (reference) {
-      std::cout << js::scene::parameters_reference();
-      return 0;
-    }
-    return list_definitions(show_name);
+    return kExitBadInput;  // CLI11 requires one command: not reached
   } catch (const js::InputError& e) {
     std::cerr << "jellysim: error: " << e.what() << "\n";
     return kExitBadInput;
@@ -625,4 +655,27 @@ int main(int argc, char** argv) {
     std::cerr << "jellysim: run failed: " << e.what() << "\n";
     return kExitFailedRun;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
+  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
+  std::signal(SIGPIPE, SIG_IGN);
+  CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", JELLYSIM_VERSION);
+  std::vector<std::pair<CLI::App*, std::function<int()>>> runs;
+  for (const Command& c : commands()) {
+    CLI::App* command = app.add_subcommand(c.name, c.help);
+    runs.emplace_back(command, c.define(*command));
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  return run_parsed(runs);
 }
