@@ -582,6 +582,14 @@ std::function<int()> define_ib2d(CLI::App& cmd) {
   return [s] { return write_hoover_miller_files(s->resolution, s->stem); };
 }
 
+/// A command whose options are one struct: `add` adds them, `run` runs the command with them.
+template <class Options, class Add, class Run>
+std::function<int()> define_with(CLI::App& cmd, Add add, Run run) {
+  auto options = std::make_shared<Options>();
+  add(cmd, *options);
+  return [options, run] { return run(*options); };
+}
+
 /// Every command, in the order `jellysim --help` lists them.
 std::vector<Command> commands() {
   return {
@@ -614,19 +622,11 @@ std::vector<Command> commands() {
        "Many jellyfish runs from a plan file (a product or list of --set overrides), each into DIR/runs/NNNN/ as "
        "`simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under mpirun; rerun to resume "
        "a killed batch (docs/batch.md)",
-       [](CLI::App& cmd) {
-         auto b = std::make_shared<BatchCommand>();
-         add_batch_options(cmd, *b);
-         return std::function<int()>([b] { return run_batch(*b); });
-       }},
+       [](CLI::App& cmd) { return define_with<BatchCommand>(cmd, add_batch_options, run_batch); }},
       {"view",
        "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, drag "
        "jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display (or xvfb-run -a)",
-       [](CLI::App& cmd) {
-         auto v = std::make_shared<ViewCommand>();
-         add_view_options(cmd, *v);
-         return std::function<int()>([v] { return run_view(*v); });
-       }},
+       [](CLI::App& cmd) { return define_with<ViewCommand>(cmd, add_view_options, run_view); }},
       {"scenes", "List built-in scenes and experiments, or print one's definition (every parameter, its default and "
                  "meaning)",
        define_scenes},
