@@ -22,7 +22,8 @@
 // real time), steps per simulated second and Krylov (GMRES) iterations per step.
 #include <benchmark/benchmark.h>
 
-#include "jellysim/coupling/mobility.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//coupling/mobility.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/jellyfish/swim_simulation.hpp"
@@ -34,7 +35,7 @@ using namespace jellysim;
 
 /// The built-in scene, optionally with a scene file of the repository laid over it, for one cycle.
 io::Config one_cycle(const char* overlay) {
-  io::Config c = experiments::default_config(experiments::find_experiment("jellyfish"));
+  io::Config c = scene::builtin_jellyfish_scene();
   if (overlay) c.merge(io::Config::parse(experiments::embedded_text(overlay), overlay));
   c.set("tank.tracers_per_side=0");
   c.set("duration=" + io::format_double(1.0 / 0.7));

@@ -13,7 +13,8 @@
 #include <string>
 #include <string_view>
 
-#include "jellysim/config/config.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//config/config.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/io/ib2d_files.hpp"
@@ -41,7 +42,7 @@ void write(const fs::path& path, std::string_view text) {
 
 /// The built-in jellyfish scene with `overlay` merged onto it, read and validated.
 void read_scene(std::string_view overlay) {
-  io::Config c = experiments::default_config(experiments::find_experiment("jellyfish"));
+  io::Config c = scene::builtin_jellyfish_scene();
   c.merge(io::Config::parse(overlay, "fuzz.toml"));
   scene::read_swim_settings(c);
 }

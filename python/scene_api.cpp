@@ -10,6 +10,7 @@
 
 #include "jellysim/core/errors.hpp"
 #include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/resolve.hpp"
 
 namespace jellysim::python {
 
@@ -187,9 +188,11 @@ Scene load_scene(const py::object& source, const py::object& overrides) {
 py::dict run_experiment(const std::string& name, const py::object& out, const py::object& scene,
                         const py::object& overrides, const py::kwargs& kwargs) {
   const experiments::Experiment& e = experiment_named(name);
-  experiments::Context ctx{experiments::default_config(e), {}};
-  if (!scene.is_none()) ctx.config.merge(io::Config::load(path_text(scene)));
-  apply_overrides(ctx.config, override_assignments(overrides, kwargs));
+  scene::ConfigSources sources{{}, scene.is_none() ? "" : path_text(scene), "", false,
+                               override_assignments(overrides, kwargs)};
+  if (!scene.is_none()) sources.scene_file = io::Config::load(sources.scene_name);
+  const experiments::Context ctx{
+      scene::resolve_config(experiments::default_config(e), sources, "experiment '" + e.name + "'"), {}};
   auto run = e.prepare(ctx);  // validates everything before anything is written
   const io::OutputDir dir = io::OutputDir::for_run(out.is_none() ? "out/" + e.name : path_text(out), e.name);
   experiments::Outcome outcome;

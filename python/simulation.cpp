@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "jellysim/core/errors.hpp"
-#include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/resolve.hpp"
 #include "jellysim/sim/frame_clock.hpp"
 
 namespace jellysim::python {
@@ -30,23 +30,10 @@ jellyfish::SwimSettings run_settings(const Scene& scene) {
 
 }  // namespace
 
-void apply_overrides(io::Config& config, const std::vector<std::string>& sets) {
-  for (const std::string& s : sets) {
-    if (s.substr(0, s.find('=')) == "scene")  // as the CLI: the kind comes from the file
-      throw InputError("--set scene: the scene kind cannot be changed by --set; give a scene file instead");
-    config.set(s);
-  }
-}
-
 Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
-  Scene scene{experiments::default_config(experiments::find_experiment("jellyfish")), {}, {}};
-  if (overlay) {
-    if (overlay->has("scene") && overlay->string("scene") != "jellyfish")
-      throw InputError(overlay_name + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
-                       overlay->string("scene") + "'");
-    scene.config.merge(*overlay);
-  }
-  apply_overrides(scene.config, sets);
+  scene::ConfigSources sources{{}, overlay_name, "jellyfish", false, sets};
+  if (overlay) sources.scene_file = *overlay;
+  Scene scene{scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene"), {}, {}};
   scene.settings = scene::read_swim_settings(scene.config);
   scene.output = experiments::read_output_options(scene.config);
   return scene;

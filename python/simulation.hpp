@@ -25,12 +25,10 @@ struct Scene {
   experiments::SwimOutputOptions output;
 };
 
-/// The CLI's --set assignments in order (`scene` cannot be set); throws InputError.
-void apply_overrides(io::Config& config, const std::vector<std::string>& sets);
-
 /// The built-in jellyfish scene (simulate's defaults), `overlay` (a scene file or TOML text; its
-/// `scene`, if given, must be "jellyfish") and the key=value overrides, validated as `simulate`
-/// validates them; throws InputError with the CLI's messages.
+/// `scene`, if given, must be "jellyfish") and the key=value overrides, resolved by
+/// scene::resolve_config and validated as `simulate` validates them; throws InputError with the
+/// CLI's messages.
 Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets);
 
 class Simulation {

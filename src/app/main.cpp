@@ -13,6 +13,7 @@
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/reference.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellysim/scene/resolve.hpp"
 
 #include "jellysim/viewer/viewer.hpp"
 #ifdef JELLYSIM_MPI
@@ -49,24 +50,11 @@ struct RunOptions {
   bool quiet = false;
   /// Options that set a key some experiments have (e.g. driven-cavity): --solver, --re, --grid,
   /// --steady-tolerance: (option, key, value).
-  struct Shorthand {
-    std::string option, key, value;
-  };
-  std::vector<Shorthand> shorthands;
+  std::vector<js::scene::Shorthand> shorthands;
   /// `simulate --checkpoint-every` / `--resume` (null: none); with `resume`, out is the run's directory.
   std::shared_ptr<const js::experiments::Checkpointing> checkpoints{};
   bool resume = false;
 };
-
-/// A command-line value as a TOML basic string (quotes and backslashes escaped).
-std::string toml_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
 
 /// CLI::Range, which lets NaN through (`--checkpoint-every nan` never checkpointed): a number in
 /// [lo, hi].
@@ -156,6 +144,22 @@ void add_checkpoint_options(CLI::App& cmd, CheckpointOptions& c, const std::stri
       ->excludes("--out");
 }
 
+/// The shorthand options the experiments declare (experiments::shorthand_options(): driven-cavity's
+/// --re, the SPH experiments' --threads, ...); each one given is recorded as (name, value) when parsed.
+void add_shorthand_options(CLI::App& cmd, std::vector<std::pair<std::string, std::string>>& given) {
+  for (const js::experiments::ShorthandOption& o : js::experiments::shorthand_options()) {
+    const auto record = [&given, name = o.name](const std::string& value) { given.emplace_back(name, value); };
+    if (o.max_count > 0) {
+      cmd.add_option_function<int>("--" + o.name, [record](int n) { record(std::to_string(n)); }, o.help)
+          ->check(CLI::Range(o.min_count, o.max_count));
+    } else {
+      CLI::Option* option = cmd.add_option_function<std::string>(
+          "--" + o.name, [record](const std::string& value) { if (!value.empty()) record(value); }, o.help);
+      if (!o.type_name.empty()) option->type_name(o.type_name);
+    }
+  }
+}
+
 /// Terminal progress: simulated time, steps and ETA, redrawn at most five times a second.
 js::sim::ProgressCallback make_progress(bool enabled) {
   if (!enabled || !::isatty(STDOUT_FILENO)) return {};
@@ -175,28 +179,21 @@ js::sim::ProgressCallback make_progress(bool enabled) {
   };
 }
 
-/// Resolves the configuration (defaults, scene file, --set, --duration), validates it, and only
-/// then creates the output directory and runs.
-int run_experiment(const js::experiments::Experiment& e, const std::optional<js::io::Config>& scene_file,
-                   const RunOptions& o) {
-  js::experiments::Context ctx{js::experiments::default_config(e), make_progress(!o.quiet), o.checkpoints};
-  if (scene_file) ctx.config.merge(*scene_file);
-  for (const std::string& s : o.sets) {
-    const std::string key = s.substr(0, s.find('='));
-    if (key == "scene")  // the kind picks the parameter table: it comes from the file, not --set
-      throw js::InputError("--set scene: the scene kind cannot be changed by --set; give a scene file instead");
-    if (o.duration && key == "duration")
-      throw js::InputError("--duration and --set duration both give the duration: give it once");
-    ctx.config.set(s);
-  }
-  if (o.duration) {
-    if (!ctx.config.has("duration")) throw js::InputError("--duration: experiment '" + e.name + "' has no duration");
-    ctx.config.set("duration=" + js::io::format_double(*o.duration));
-  }
-  for (const auto& [option, key, value] : o.shorthands) {
-    if (!ctx.config.has(key)) throw js::InputError("--" + option + ": experiment '" + e.name + "' has no " + key);
-    ctx.config.set(key + "=" + value);
-  }
+/// A scene file given to a command: `path`'s configuration, and the kind it must be (none: any).
+struct SceneFile {
+  std::optional<js::io::Config> config;
+  std::string path;
+  std::string expected_kind{};
+};
+
+/// Resolves the configuration (defaults, scene file, --set, --duration: scene::resolve_config),
+/// validates it, and only then creates the output directory and runs.
+int run_experiment(const js::experiments::Experiment& e, const SceneFile& scene, const RunOptions& o) {
+  const js::scene::ConfigSources sources{scene.config, scene.path, scene.expected_kind, false, o.sets, o.duration,
+                                         o.shorthands};
+  js::experiments::Context ctx{
+      js::scene::resolve_config(js::experiments::default_config(e), sources, "experiment '" + e.name + "'"),
+      make_progress(!o.quiet), o.checkpoints};
   auto run = e.prepare(ctx);
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
@@ -238,12 +235,12 @@ int run_checkpointed_simulation(const std::string& command, const std::string& s
   how.every_s = every_s;
   how.sets = o.sets;
   if (o.duration) how.duration = js::io::format_double(*o.duration);
-  std::optional<js::io::Config> scene;
+  SceneFile scene{{}, scene_path};
   if (!scene_path.empty()) {
     how.scene_text = js::io::Config::read_scene_text(scene_path);
     how.scene_source = scene_path;
-    scene = js::io::Config::parse(how.scene_text, scene_path);
-    if (!scene->has("scene") || scene->string("scene") != "jellyfish")
+    scene.config = js::io::Config::parse(how.scene_text, scene_path);
+    if (!scene.config->has("scene") || scene.config->string("scene") != "jellyfish")
       throw js::InputError("--checkpoint-every: " + scene_path + " is not a jellyfish scene (scene = \"jellyfish\"); "
                            "only jellyfish simulations write checkpoints");
   }
@@ -264,8 +261,8 @@ int resume_simulation(const std::string& command, const std::string& dir, bool q
   o.sets = c.sets;
   if (!c.duration.empty()) o.duration = std::strtod(c.duration.c_str(), nullptr);  // written by format_double: exact
   o.resume = true;
-  std::optional<js::io::Config> scene;
-  if (!c.scene_text.empty()) scene = js::io::Config::parse(c.scene_text, c.scene_source);
+  SceneFile scene{{}, c.scene_source};
+  if (!c.scene_text.empty()) scene.config = js::io::Config::parse(c.scene_text, c.scene_source);
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
   checkpoints->how = std::move(c);
   checkpoints->resume = true;
@@ -275,12 +272,13 @@ int resume_simulation(const std::string& command, const std::string& dir, bool q
 }
 
 int run_scene(const std::string& scene_path, const RunOptions& o, const std::string& default_scene) {
-  std::optional<js::io::Config> scene;
+  SceneFile scene{{}, scene_path};
   std::string name = default_scene;
   if (!scene_path.empty()) {
-    scene = js::io::Config::load(scene_path);
-    if (!scene->has("scene")) throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
-    name = scene->string("scene");
+    scene.config = js::io::Config::load(scene_path);
+    if (!scene.config->has("scene"))
+      throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
+    name = scene.config->string("scene");
     // `run` on a jellyfish scene renders it too: the animation job extends the jellyfish scene.
     if (default_scene == "animation" && name == "jellyfish") name = "animation";
   }
@@ -399,7 +397,10 @@ std::string read_text_file(const std::string& path) {
 
 /// Loads the scene like `simulate` does (built-in jellyfish scene, scene file, --set) and runs the viewer.
 int run_view(ViewCommand& v) {
-  const js::io::Config config = js::scene::load_jellyfish_scene(v.scene_path, v.sets);
+  js::scene::ConfigSources sources{{}, v.scene_path, "jellyfish", false, v.sets};
+  if (!v.scene_path.empty()) sources.scene_file = js::io::Config::load(v.scene_path);
+  const js::io::Config config =
+      js::scene::resolve_config(js::scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
   const js::jellyfish::SwimSettings settings = js::scene::read_swim_settings(config);
   const std::string name = v.scene_path.empty() ? "built-in jellyfish" : v.scene_path;
   auto& o = v.options;
@@ -472,170 +473,178 @@ int run_batch(const BatchCommand& b) {
   return js::experiments::run_batch_threaded(batch, b.threads, b.quiet);
 }
 
-}  // namespace
+/// A command of `jellysim`: its name and help, `define` adds its options to its subcommand and
+/// returns what runs it once parsed. A new command is a row of commands().
+struct Command {
+  std::string name;
+  std::string help;
+  std::function<std::function<int()>(CLI::App&)> define;
+};
 
-int main(int argc, char** argv) {
-  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
-  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
-  std::signal(SIGPIPE, SIG_IGN);
-  CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", JELLYSIM_VERSION);
+/// `run` and `simulate`: a scene (default: their built-in experiment), checkpoints, resume.
+std::function<int()> define_scene_command(CLI::App& cmd, const std::string& command, const std::string& scene_help,
+                                          const std::string& default_out, const std::string& set_example,
+                                          const std::string& checkpoint_more) {
+  struct State {
+    RunOptions options;
+    std::string scene_path;
+    CheckpointOptions checkpoints;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("scene", s->scene_path, scene_help)->check(CLI::ExistingFile);
+  add_run_options(cmd, s->options, default_out, set_example);
+  add_checkpoint_options(cmd, s->checkpoints, checkpoint_more);
+  return [s, command] {
+    if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options.quiet);
+    if (s->checkpoints.every > 0)
+      return run_checkpointed_simulation(command, s->scene_path, s->options, s->checkpoints.every);
+    return run_scene(s->scene_path, s->options, checkpointed_experiment(command).name);
+  };
+}
 
-  RunOptions run_opts;
-  std::string scene_path;
-  auto* run = app.add_subcommand("run", "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its "
-      "outputs; for a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json");
-  run->add_option("scene", scene_path, "Scene file (TOML); omitted: the built-in default scene")->check(CLI::ExistingFile);
-  add_run_options(*run, run_opts, "out", "--set jellyfish.frequency=0.9 --set render.width=320");
-  CheckpointOptions run_checkpoints;
-  add_checkpoint_options(*run, run_checkpoints,
-                         " (jellyfish scenes; kept until the animation is written too: a run stopped while rendering "
-                         "renders again on --resume)");
-
-  RunOptions sim_opts;
-  std::string sim_scene_path;
-  auto* simulate = app.add_subcommand(
-      "simulate", "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, "
-                  "slices.csv, plots, a picture and VTK fields per frame, summary.json");
-  simulate->add_option("scene", sim_scene_path, "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene")
+std::function<int()> define_sweep(CLI::App& cmd) {
+  struct State {
+    RunOptions options;
+    std::string scene_path;
+    std::vector<double> frequencies;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("scene", s->scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
       ->check(CLI::ExistingFile);
-  add_run_options(*simulate, sim_opts, "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false");
-  CheckpointOptions sim_checkpoints;
-  add_checkpoint_options(*simulate, sim_checkpoints, "");
+  cmd.add_option("--frequencies", s->frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")->delimiter(',');
+  add_run_options(cmd, s->options, "out/sweep", "--set sweep.frequencies=[0.5,0.9] --set tank.viscosity=2e-5");
+  return [s] {
+    if (!s->frequencies.empty()) {
+      std::string list;
+      for (double f : s->frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
+      s->options.sets.push_back("sweep.frequencies=[" + list + "]");
+    }
+    SceneFile scene{{}, s->scene_path};
+    if (!s->scene_path.empty()) scene.config = js::io::Config::load(s->scene_path);
+    return run_experiment(js::experiments::find_experiment("sweep"), scene, s->options);
+  };
+}
 
-  RunOptions sweep_opts;
-  std::string sweep_scene_path;
-  std::vector<double> sweep_frequencies;
-  auto* sweep = app.add_subcommand(
-      "sweep", "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, on the "
-               "built-in scene or a scene file, each frequency at sweep.placements sub-cell positions of the bell "
-               "(default 1; 8 for the thesis's chaotic coarse tank): sweep.csv (mean and spread), sweep_runs.csv, "
-               "sweep.png, trajectories.png, summary.json");
-  sweep->add_option("scene", sweep_scene_path, "Jellyfish scene file (TOML); omitted: the built-in scene")
+std::function<int()> define_experiment(CLI::App& cmd) {
+  struct State {
+    RunOptions options;
+    std::string name, scene_path;
+    std::vector<std::pair<std::string, std::string>> shorthands;  // the experiments' own options, as given
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("name", s->name, "Experiment name")->required();
+  cmd.add_option("scene", s->scene_path,
+                 "Jellyfish scene file laid over the experiment's scene (experiments that extend the jellyfish scene, "
+                 "e.g. convergence)")
       ->check(CLI::ExistingFile);
-  sweep->add_option("--frequencies", sweep_frequencies, "Contraction frequencies in Hz (default 0.3 ... 1.3)")
-      ->delimiter(',');
-  add_run_options(*sweep, sweep_opts, "out/sweep", "--set sweep.frequencies=[0.5,0.9] --set tank.viscosity=2e-5");
+  add_run_options(cmd, s->options, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
+  add_shorthand_options(cmd, s->shorthands);
+  return [s] {
+    if (s->options.out.empty()) s->options.out = "out/" + s->name;
+    const js::experiments::Experiment& e = js::experiments::find_experiment(s->name);
+    s->options.shorthands = js::experiments::shorthands_for(e, s->shorthands);
+    SceneFile scene{{}, s->scene_path, "jellyfish"};
+    if (!s->scene_path.empty()) {
+      if (e.base_path != "scenes/jellyfish.toml")
+        throw js::InputError("experiment '" + s->name + "' takes no scene file ('" + s->scene_path +
+                             "'): only experiments on the jellyfish scene do");
+      scene.config = js::io::Config::load(s->scene_path);
+    }
+    return run_experiment(e, scene, s->options);
+  };
+}
 
-  RunOptions exp_opts;
-  std::string exp_name;
-  auto* exp = app.add_subcommand("experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." +
-                                                   experiment_list());
-  exp->add_option("name", exp_name, "Experiment name")->required();
-  std::string exp_scene_path;
-  exp->add_option("scene", exp_scene_path,
-                  "Jellyfish scene file laid over the experiment's scene (experiments that extend the jellyfish scene, "
-                  "e.g. convergence)")
-      ->check(CLI::ExistingFile);
-  add_run_options(*exp, exp_opts, "", "for swinging-bar: --set bar.point_mass=12 --set time.integrator=rk4");
-  std::string solver, re, grid;
-  exp->add_option("--solver", solver, "Fluid solver: eulerian or semi-lagrangian (driven-cavity)");
-  exp->add_option("--re", re, "Reynolds number (driven-cavity)");
-  exp->add_option("--grid", grid, "Cells per side (driven-cavity)");
-  std::string grids, cycles;
-  exp->add_option("--grids", grids, "Grids of a convergence study, coarsest first: NXxNY,... (convergence)")
-      ->type_name("LIST");
-  exp->add_option("--cycles", cycles, "Contraction cycles per run (convergence, hoover-miller, axisymmetric-vs-planar)")
-      ->type_name("N");
-  std::string steady_tolerance;
-  exp->add_option("--steady-tolerance", steady_tolerance,
-                  "Stop when max|du/dt| L/U^2 falls below this (driven-cavity: cavity.steady_tolerance)");
-  int threads = 0;
-  exp->add_option("--threads", threads, "Threads for the SPH experiments (run.threads; default: one per core)")
-      ->check(CLI::Range(1, 64));
+std::function<int()> define_scenes(CLI::App& cmd) {
+  struct State {
+    std::string name;
+    bool reference = false;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("name", s->name, "Scene or experiment to print (`run` and `simulate`: their built-in scenes)");
+  cmd.add_flag("--reference", s->reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
+  return [s] {
+    if (!s->reference) return list_definitions(s->name);
+    std::cout << js::scene::parameters_reference();
+    return 0;
+  };
+}
 
-  BatchCommand batch_cmd;
-  auto* batch = app.add_subcommand(
-      "batch", "Many jellyfish runs from a plan file (a product or list of --set overrides), each into "
-               "DIR/runs/NNNN/ as `simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under "
-               "mpirun; rerun to resume a killed batch (docs/batch.md)");
-  add_batch_options(*batch, batch_cmd);
-
-  ViewCommand view_cmd;
-  auto* view = app.add_subcommand(
-      "view", "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, "
-              "drag jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display "
-              "(or xvfb-run -a)");
-  add_view_options(*view, view_cmd);
-
-  std::string show_name;
-  auto* scenes = app.add_subcommand("scenes", "List built-in scenes and experiments, or print one's definition "
-                                              "(every parameter, its default and meaning)");
-  scenes->add_option("name", show_name, "Scene or experiment to print (`run` and `simulate`: their built-in scenes)");
-  bool reference = false;
-  scenes->add_flag("--reference", reference, "Print the scene parameter reference (docs/parameters.md) as Markdown");
-
-  int hm_resolution = 256;
-  std::string hm_stem;
-  auto* ib2d = app.add_subcommand(
-      "ib2d-jellyfish", "Write the Hoover-Miller jellyfish bell (IB2d's convergence example) as IB2d structure files "
-                        "STEM.vertex, .spring, .nonInv_beam, .target (docs/ib2d.md)");
-  ib2d->add_option("--resolution", hm_resolution, "IB2d's N, a multiple of 8 in [16, 4096]: 0.375 N x 1.25 N cells")
+std::function<int()> define_ib2d(CLI::App& cmd) {
+  struct State {
+    int resolution = 256;
+    std::string stem;
+  };
+  auto s = std::make_shared<State>();
+  cmd.add_option("--resolution", s->resolution, "IB2d's N, a multiple of 8 in [16, 4096]: 0.375 N x 1.25 N cells")
       ->capture_default_str()
       ->check(CLI::Range(16, 4096));
-  ib2d->add_option("--out", hm_stem, "Path and stem of the files, e.g. scenes/hoover-miller/jelly256")->required();
+  cmd.add_option("--out", s->stem, "Path and stem of the files, e.g. scenes/hoover-miller/jelly256")->required();
+  return [s] { return write_hoover_miller_files(s->resolution, s->stem); };
+}
 
+/// A command whose options are one struct: `add` adds them, `run` runs the command with them.
+template <class Options, class Add, class Run>
+std::function<int()> define_with(CLI::App& cmd, Add add, Run run) {
+  auto options = std::make_shared<Options>();
+  add(cmd, *options);
+  return [options, run] { return run(*options); };
+}
+
+/// Every command, in the order `jellysim --help` lists them.
+std::vector<Command> commands() {
+  return {
+      {"run",
+       "The main job: simulate a scene (default: the built-in jellyfish, thesis Fig. 8.21) and write its outputs; for "
+       "a jellyfish: jellyfish.mp4, jellyfish.glb, frames/*.png, meshes, viewer.html, metrics.csv, summary.json",
+       [](CLI::App& cmd) {
+         return define_scene_command(cmd, "run", "Scene file (TOML); omitted: the built-in default scene", "out",
+                                     "--set jellyfish.frequency=0.9 --set render.width=320",
+                                     " (jellyfish scenes; kept until the animation is written too: a run stopped "
+                                     "while rendering renders again on --resume)");
+       }},
+      {"simulate",
+       "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, slices.csv, plots, a "
+       "picture and VTK fields per frame, summary.json",
+       [](CLI::App& cmd) {
+         return define_scene_command(cmd, "simulate",
+                                     "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene",
+                                     "out/simulate", "--set jellyfish.frequency=0.9 --set output.vtk=false", "");
+       }},
+      {"sweep",
+       "Distance travelled versus contraction frequency (thesis Figs 8.13/8.14) on every core, on the built-in scene "
+       "or a scene file, each frequency at sweep.placements sub-cell positions of the bell (default 1; 8 for the "
+       "thesis's chaotic coarse tank): sweep.csv (mean and spread), sweep_runs.csv, sweep.png, trajectories.png, "
+       "summary.json",
+       define_sweep},
+      {"experiment", "Reproduce an experiment; writes summary.json, CSV files and pictures." + experiment_list(),
+       define_experiment},
+      {"batch",
+       "Many jellyfish runs from a plan file (a product or list of --set overrides), each into DIR/runs/NNNN/ as "
+       "`simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under mpirun; rerun to resume "
+       "a killed batch (docs/batch.md)",
+       [](CLI::App& cmd) { return define_with<BatchCommand>(cmd, add_batch_options, run_batch); }},
+      {"view",
+       "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, drag "
+       "jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display (or xvfb-run -a)",
+       [](CLI::App& cmd) { return define_with<ViewCommand>(cmd, add_view_options, run_view); }},
+      {"scenes", "List built-in scenes and experiments, or print one's definition (every parameter, its default and "
+                 "meaning)",
+       define_scenes},
+      {"ib2d-jellyfish", "Write the Hoover-Miller jellyfish bell (IB2d's convergence example) as IB2d structure files "
+                         "STEM.vertex, .spring, .nonInv_beam, .target (docs/ib2d.md)",
+       define_ib2d},
+  };
+}
+
+/// Runs the parsed command; a usage or input error is exit 2, a failed run exit 1.
+int run_parsed(const std::vector<std::pair<CLI::App*, std::function<int()>>>& runs) {
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
-  }
-  try {
-    for (const CLI::App* command : app.get_subcommands())
+    for (const auto& [command, run] : runs) {
+      if (!command->parsed()) continue;
       if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
-    if (run->parsed()) {
-      if (!run_checkpoints.resume_dir.empty()) return resume_simulation("run", run_checkpoints.resume_dir, run_opts.quiet);
-      if (run_checkpoints.every > 0) return run_checkpointed_simulation("run", scene_path, run_opts, run_checkpoints.every);
-      return run_scene(scene_path, run_opts, "animation");
+      return run();
     }
-    if (simulate->parsed()) {
-      if (!sim_checkpoints.resume_dir.empty()) return resume_simulation("simulate", sim_checkpoints.resume_dir, sim_opts.quiet);
-      if (sim_checkpoints.every > 0)
-        return run_checkpointed_simulation("simulate", sim_scene_path, sim_opts, sim_checkpoints.every);
-      return run_scene(sim_scene_path, sim_opts, "jellyfish");
-    }
-    if (view->parsed()) return run_view(view_cmd);
-    if (batch->parsed()) return run_batch(batch_cmd);
-    if (ib2d->parsed()) return write_hoover_miller_files(hm_resolution, hm_stem);
-    if (sweep->parsed()) {
-      if (!sweep_frequencies.empty()) {
-        std::string list;
-        for (double f : sweep_frequencies) list += (list.empty() ? "" : ", ") + js::io::format_double(f);
-        sweep_opts.sets.push_back("sweep.frequencies=[" + list + "]");
-      }
-      std::optional<js::io::Config> scene;
-      if (!sweep_scene_path.empty()) scene = js::io::Config::load(sweep_scene_path);
-      return run_experiment(js::experiments::find_experiment("sweep"), scene, sweep_opts);
-    }
-    if (exp->parsed()) {
-      if (exp_opts.out.empty()) exp_opts.out = "out/" + exp_name;
-      for (const RunOptions::Shorthand& s : {RunOptions::Shorthand{"solver", "solver", solver}, {"re", "re", re},
-                                             {"grid", "grid", grid}, {"cycles", "cycles", cycles},
-                                             {"grids", "grids", grids.empty() ? grids : toml_string(grids)},
-                                             {"steady-tolerance", "cavity.steady_tolerance", steady_tolerance}}) {
-        if (!s.value.empty()) exp_opts.shorthands.push_back(s);
-      }
-      if (threads > 0) exp_opts.shorthands.push_back({"threads", "run.threads", std::to_string(threads)});
-      const js::experiments::Experiment& e = js::experiments::find_experiment(exp_name);
-      std::optional<js::io::Config> scene;
-      if (!exp_scene_path.empty()) {
-        if (e.base_path != "scenes/jellyfish.toml")
-          throw js::InputError("experiment '" + exp_name + "' takes no scene file ('" + exp_scene_path +
-                               "'): only experiments on the jellyfish scene do");
-        scene = js::io::Config::load(exp_scene_path);
-        if (scene->has("scene") && scene->string("scene") != "jellyfish")
-          throw js::InputError(exp_scene_path + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
-                               scene->string("scene") + "'");
-      }
-      return run_experiment(e, scene, exp_opts);
-    }
-    if (reference) {
-      std::cout << js::scene::parameters_reference();
-      return 0;
-    }
-    return list_definitions(show_name);
+    return kExitBadInput;  // CLI11 requires one command: not reached
   } catch (const js::InputError& e) {
     std::cerr << "jellysim: error: " << e.what() << "\n";
     return kExitBadInput;
@@ -646,4 +655,27 @@ int main(int argc, char** argv) {
     std::cerr << "jellysim: run failed: " << e.what() << "\n";
     return kExitFailedRun;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed standard output (`jellysim ... | head -1`) makes writes to it fail (EPIPE), and the
+  // stream stops printing, instead of SIGPIPE killing the process in the middle of its work.
+  std::signal(SIGPIPE, SIG_IGN);
+  CLI::App app{"jellysim " JELLYSIM_VERSION " - physically simulated jellyfish (and the methods they need)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", JELLYSIM_VERSION);
+  std::vector<std::pair<CLI::App*, std::function<int()>>> runs;
+  for (const Command& c : commands()) {
+    CLI::App* command = app.add_subcommand(c.name, c.help);
+    runs.emplace_back(command, c.define(*command));
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  return run_parsed(runs);
 }

@@ -165,6 +165,7 @@ Experiment axisymmetric_vs_planar_experiment() {
                "the same bell and stroke in planar and in axisymmetric water: distance, speed, cavity volume, wakes",
                "experiments/axisymmetric-vs-planar.toml", prepare_axisymmetric_vs_planar};
   e.base_path = "scenes/jellyfish.toml";
+  e.shorthands = {"cycles"};
   return e;
 }
 

@@ -8,6 +8,7 @@
 #include "jellysim/core/parallel.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/io/output.hpp"
+#include "jellysim/scene/resolve.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -56,23 +57,15 @@ std::string describe_run(const BatchPlan& plan, std::size_t k) {
   return "run " + std::to_string(k) + (text.empty() ? "" : " (" + text + ")");
 }
 
-/// The built-in jellyfish scene, the plan's scene file, its duration, [set] and the command line's --set.
+/// The built-in jellyfish scene, the plan's scene file, its duration, [set] and the command line's
+/// --set (scene::resolve_config; the plan's duration is its first override, so a --set overrides it).
 io::Config base_config(const BatchPlan& plan, const std::vector<std::string>& sets) {
-  io::Config c = default_config(simulate_experiment());
-  if (!plan.scene.empty()) {
-    const io::Config scene = io::Config::load(plan.scene);
-    if (!scene.has("scene") || scene.string("scene") != "jellyfish")
-      throw InputError("scene '" + plan.scene.string() + "' is not a jellyfish scene (it needs scene = \"jellyfish\")");
-    c.merge(scene);
-  }
-  if (plan.duration) c.set("duration=" + io::format_double(*plan.duration));
-  for (const std::string& s : plan.shared) c.set(s);
-  for (const std::string& s : sets) {
-    if (s.substr(0, s.find('=')) == "scene")
-      throw InputError("--set scene: the scene kind cannot be changed by --set; give it in the plan");
-    c.set(s);
-  }
-  return c;
+  scene::ConfigSources sources{{}, plan.scene.string(), "jellyfish", true};
+  if (!plan.scene.empty()) sources.scene_file = io::Config::load(plan.scene);
+  if (plan.duration) sources.sets.push_back("duration=" + io::format_double(*plan.duration));
+  sources.sets.insert(sources.sets.end(), plan.shared.begin(), plan.shared.end());
+  sources.sets.insert(sources.sets.end(), sets.begin(), sets.end());
+  return scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
 }
 
 /// A run's own small files (summary.json, manifest.txt): at most this many bytes.

@@ -307,6 +307,7 @@ Experiment convergence_experiment() {
                "peak speed; observed order, Richardson extrapolate, Roache's GCI (convergence.csv, convergence.png)",
                "experiments/convergence.toml", prepare_convergence};
   e.base_path = "scenes/jellyfish.toml";
+  e.shorthands = {"grids", "cycles"};
   return e;
 }
 

@@ -162,8 +162,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_driven_cavity(const Context
 }  // namespace
 
 Experiment driven_cavity_experiment() {
-  return {"driven-cavity", "Lid-driven cavity against Ghia et al. (1982) and thesis Figure 8.7 (§8.1.3)",
-          "experiments/driven-cavity.toml", prepare_driven_cavity};
+  Experiment e{"driven-cavity", "Lid-driven cavity against Ghia et al. (1982) and thesis Figure 8.7 (§8.1.3)",
+               "experiments/driven-cavity.toml", prepare_driven_cavity};
+  e.shorthands = {"solver", "re", "grid", "steady-tolerance"};
+  return e;
 }
 
 }  // namespace jellysim::experiments

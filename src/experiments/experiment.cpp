@@ -9,6 +9,7 @@
 #include "jellysim/scene/render_settings.hpp"
 #include "jellysim/scene/study_scenes.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace jellysim::experiments {
@@ -64,6 +65,53 @@ const Experiment& find_experiment(const std::string& name) {
     names += (names.empty() ? "" : ", ") + e.name;
   }
   throw InputError("unknown experiment '" + name + "' (known: " + names + ")");
+}
+
+const std::vector<ShorthandOption>& shorthand_options() {
+  static const std::vector<ShorthandOption> options = {
+      {"solver", "solver", "Fluid solver: eulerian or semi-lagrangian (driven-cavity)"},
+      {"re", "re", "Reynolds number (driven-cavity)"},
+      {"grid", "grid", "Cells per side (driven-cavity)"},
+      {"grids", "grids", "Grids of a convergence study, coarsest first: NXxNY,... (convergence)", "LIST", true},
+      {"cycles", "cycles", "Contraction cycles per run (convergence, hoover-miller, axisymmetric-vs-planar)", "N"},
+      {"steady-tolerance", "cavity.steady_tolerance",
+       "Stop when max|du/dt| L/U^2 falls below this (driven-cavity: cavity.steady_tolerance)"},
+      {"threads", "run.threads", "Threads for the SPH experiments (run.threads; default: one per core)", "", false, 1,
+       64},
+  };
+  return options;
+}
+
+namespace {
+
+/// A command-line value as a TOML basic string (quotes and backslashes escaped).
+std::string toml_string(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+const ShorthandOption& shorthand_option(const std::string& name) {
+  for (const ShorthandOption& o : shorthand_options())
+    if (o.name == name) return o;
+  throw std::logic_error("no shorthand option --" + name);
+}
+
+}  // namespace
+
+std::vector<scene::Shorthand> shorthands_for(const Experiment& e,
+                                             const std::vector<std::pair<std::string, std::string>>& given) {
+  std::vector<scene::Shorthand> sets;
+  for (const auto& [name, value] : given) {
+    const ShorthandOption& o = shorthand_option(name);
+    if (std::find(e.shorthands.begin(), e.shorthands.end(), name) == e.shorthands.end())
+      throw InputError("--" + name + ": experiment '" + e.name + "' has no " + o.key);
+    sets.push_back({name, o.key, o.quoted ? toml_string(value) : value});
+  }
+  return sets;
 }
 
 std::string_view embedded_text(std::string_view path) {

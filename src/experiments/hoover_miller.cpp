@@ -165,6 +165,7 @@ Experiment hoover_miller_experiment() {
                "IB2d's Hoover-Miller jellyfish bell (its convergence example) with our coupling: swimming and cost",
                "experiments/hoover-miller.toml", prepare_hoover_miller};
   e.base_path = "scenes/jellyfish.toml";
+  e.shorthands = {"re", "grid", "cycles"};
   return e;
 }
 

@@ -462,8 +462,10 @@ Experiment with_base(Experiment e) {
 }  // namespace
 
 Experiment oval_membrane_experiment() {
-  return {"oval-membrane", "Stockie & Wetton's oval membrane: area kept by the immersed boundary (Figs 8.8/8.9)",
-          "experiments/oval-membrane.toml", prepare_oval_membrane};
+  Experiment e{"oval-membrane", "Stockie & Wetton's oval membrane: area kept by the immersed boundary (Figs 8.8/8.9)",
+               "experiments/oval-membrane.toml", prepare_oval_membrane};
+  e.shorthands = {"solver"};
+  return e;
 }
 Experiment kinematics_experiment() {
   return with_base({"kinematics", "Position, velocity and acceleration of the 4 cm jellyfish at 0.7 Hz (Figs 8.15-8.17)",

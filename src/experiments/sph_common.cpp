@@ -96,6 +96,7 @@ Experiment make_experiment(std::string name, std::string description, std::strin
   e.description = std::move(description);
   e.definition_path = std::move(definition_path);
   e.prepare = std::move(prepare);
+  e.shorthands = {"threads"};  // run.threads
   return e;
 }
 

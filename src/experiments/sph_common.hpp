@@ -49,7 +49,8 @@ double cpu_seconds();
 /// Common key figures of a run; cpu_seconds = processor time of the run (all threads).
 nlohmann::ordered_json run_figures(const sph::RunResult& r, double wall_seconds, double cpu_seconds);
 
-/// An Experiment from its name, description, definition file and prepare function.
+/// An Experiment from its name, description, definition file and prepare function; every SPH
+/// experiment takes --threads (run.threads).
 Experiment make_experiment(std::string name, std::string description, std::string definition_path,
                            std::function<std::function<Outcome(const io::OutputDir&)>(const Context&)> prepare);
 

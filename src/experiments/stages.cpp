@@ -4,7 +4,8 @@
 // `bell.source = "synthetic"` uses an analytic contracting bell instead.
 #include <chrono>
 
-#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/geometry/synthetic_bell.hpp"
 #include "jellysim/render/animation_outputs.hpp"
@@ -21,7 +22,7 @@ Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::Out
   if (s.simulated) {
     // One contraction cycle of the built-in scene: expanded = the rest state, contracted = the
     // frame with the smallest sub-umbrellar volume.
-    io::Config scene = default_config(find_experiment("jellyfish"));
+    io::Config scene = jellysim::scene::builtin_jellyfish_scene();
     scene.set("tank.tracers_per_side=0");
     scene.set("duration=" + io::format_double(1.0 / scene.number("jellyfish.frequency")));
     const SwimRecording rec = run_swim(read_swim_settings(scene), {}, nullptr, {});

@@ -471,17 +471,4 @@ const ParameterTable& jellyfish_scene() {
   return table;
 }
 
-io::Config load_jellyfish_scene(const std::string& path, const std::vector<std::string>& sets) {
-  io::Config config = jellyfish_scene().defaults();
-  if (!path.empty()) {
-    const io::Config scene = io::Config::load(path);
-    if (scene.has("scene") && scene.string("scene") != "jellyfish")
-      throw InputError(path + ": expected a jellyfish scene (scene = \"jellyfish\"), not '" +
-                       scene.string("scene") + "'");
-    config.merge(scene);
-  }
-  for (const std::string& s : sets) config.set(s);
-  return config;
-}
-
 }  // namespace jellysim::scene

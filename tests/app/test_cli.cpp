@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <regex>
 
 #include "../cli_runner.hpp"
@@ -121,6 +122,27 @@ TEST(Cli, ContradictoryOrSmuggledSettingsAreUsageErrors) {
 
 // A modulus of 1e200 Pa or a tank 1e308 m high ran into NaN and crashed (a NaN position indexed
 // out of the fluid grid, tested in tests/fluid); such values are now outside the fields' ranges.
+// Issue 36: one resolver (scene::resolve_config) for every command; `view` once alone let
+// `--set scene=` through. Each refuses it with the same message and exit 2, before any window,
+// run or batch (the refusal comes first, so `view` needs no display here).
+TEST(Cli, EveryCommandRefusesSetSceneTheSameWay) {
+  const fs::path dir = fresh_dir("set_scene");
+  fs::create_directories(dir);
+  std::ofstream(dir / "plan.toml") << "duration = 0.1\n[product]\n\"jellyfish.frequency\" = [0.5]\n";
+  const std::string message = "--set scene: the scene kind cannot be changed by --set; give a scene file instead";
+  for (const std::string& command :
+       {std::string("view --frames 1"), std::string("simulate --quiet"), std::string("run --quiet"),
+        std::string("sweep --quiet"), std::string("experiment swinging-bar --quiet"),
+        "batch " + (dir / "plan.toml").string() + " --quiet"}) {
+    const std::string out = command.starts_with("view") ? "" : " --out " + (dir / "out").string();
+    const Result r = run_cli(command + " --set scene=driven-cavity" + out);
+    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << command << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out")) << command;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, PhysicalParametersHaveUpperBounds) {
   const fs::path dir = fresh_dir("upper_bounds");
   for (const char* field : {"jellyfish.bell_modulus=1e200", "jellyfish.muscle_modulus=1e308", "tank.height=1e308",

@@ -4,13 +4,14 @@
 // The built-in (resolved) scene is tested in test_swim.cpp.
 #include <string>
 
-#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//experiments/experiment.hpp"
 #include "jellysim/config/config.hpp"
 
 namespace jellysim::experiments::testing {
 
 inline io::Config scene_with(const std::string& overlay) {
-  io::Config c = default_config(find_experiment("jellyfish"));
+  io::Config c = scene::builtin_jellyfish_scene();
   c.merge(io::Config::parse(embedded_text("scenes/jellyfish-thesis.toml"), "scenes/jellyfish-thesis.toml"));
   c.set("tank.tracers_per_side=0");
   c.merge(io::Config::parse(overlay, "test scene"));

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "jellysim/core/errors.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//core/errors.hpp"
 #include "jellysim/elastic/spring_assembly.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
@@ -124,7 +125,7 @@ TEST(RingJellyfish, MustSwimAlongTheAxis) {
 /// The built-in scene in axisymmetric water on the preview grid (96 × 192: 16 cells across the bell,
 /// a sixtieth of the built-in grid's cost), with `overlay` laid over it.
 io::Config axisymmetric_scene(const std::string& overlay = "") {
-  io::Config c = experiments::default_config(experiments::find_experiment("jellyfish"));
+  io::Config c = scene::builtin_jellyfish_scene();
   c.set("tank.tracers_per_side=0");
   c.set("tank.geometry=\"axisymmetric\"");
   c.set("tank.cells=[96, 192]");

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "jellysim/experiments/experiment.hpp"
+#include "jellysim/scene/resolve.hpp"
+#include "jellysim//experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/jellyfish/obstacle.hpp"
@@ -97,7 +98,7 @@ phase = 0.25
 // over three cycles: largest tilts 8.2 and 4.5 degrees, distances 3.8 and 8.1 cm (the later one
 // swims into the water its neighbour set moving).
 TEST(SlowTank, TwoJellyfishKeepTheirHeadingOverThreeCycles) {
-  io::Config c = default_config(find_experiment("jellyfish"));
+  io::Config c = scene::builtin_jellyfish_scene();
   c.merge(io::Config::load(std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml"));
   c.set("tank.tracers_per_side=0");
   c.set("duration=4.285714285714286");  // three cycles at 0.7 Hz

@@ -3,6 +3,7 @@
 // Each experiment is a function from its resolved configuration to files in an output directory.
 #include "jellysim/config/config.hpp"
 #include "jellysim/io/output.hpp"
+#include "jellysim/scene/resolve.hpp"
 #include "jellysim/sim/time_stepping.hpp"
 
 #include <functional>
@@ -45,7 +46,28 @@ struct Experiment {
   /// The definition also has the [render] section of the 3D pipeline (scene/render_settings.hpp),
   /// whose defaults come from its parameter table.
   bool renders = false;
+  /// The shorthand options of `jellysim experiment` this experiment takes (shorthand_options()'s
+  /// names, e.g. "re" for driven-cavity's --re); each sets a key its configuration has.
+  std::vector<std::string> shorthands{};
 };
+
+/// A command-line option of `jellysim experiment` that sets one key of the experiments declaring it
+/// (Experiment::shorthands): `--NAME VALUE` is `--set KEY=VALUE`.
+struct ShorthandOption {
+  std::string name;             ///< without the "--"
+  std::string key;              ///< the configuration key it sets
+  std::string help;             ///< the command line's help text
+  std::string type_name{};      ///< the help's placeholder (empty: the parser's own)
+  bool quoted = false;          ///< the value is text, set as a TOML string (e.g. --grids 24x32,48x64)
+  int min_count = 0, max_count = 0;  ///< max_count > 0: an integer in [min_count, max_count]
+};
+
+/// Every shorthand option, in the order `jellysim experiment --help` lists them.
+const std::vector<ShorthandOption>& shorthand_options();
+/// The --set assignments of the shorthand options given on the command line ((name, value), value
+/// as typed) for `e`; an option `e` does not declare is an InputError naming it (exit 2).
+std::vector<scene::Shorthand> shorthands_for(const Experiment& e,
+                                             const std::vector<std::pair<std::string, std::string>>& given);
 
 const std::vector<Experiment>& all_experiments();
 /// Finds an experiment by name; throws InputError listing the known names.

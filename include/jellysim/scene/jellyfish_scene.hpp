@@ -20,10 +20,4 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c);
 double read_picture_zoom(const io::Config& c);
 inline constexpr double kMinPictureZoom = 0.01;
 
-/// The built-in scene, the scene file at `path` (when not empty) laid over it, then the `--set`
-/// assignments: what `view` starts from (`simulate` builds the same configuration through its
-/// experiment, experiments::default_config). A file whose `scene` is not "jellyfish" is an
-/// InputError naming it.
-io::Config load_jellyfish_scene(const std::string& path, const std::vector<std::string>& sets);
-
 }  // namespace jellysim::scene
