@@ -2,7 +2,8 @@
 # One entry point for a fresh Debian 12 machine: installs what is missing (apt-get), builds, then
 #   scripts/jellysim.sh run [jellysim run options]   runs the main job on the built-in default scene
 #   scripts/jellysim.sh test                         runs the whole test suite (Release, then ASan+UBSan
-#                                                    with clang, a short libFuzzer run included)
+#                                                    with clang, a short libFuzzer run included, then the
+#                                                    threaded tests under ThreadSanitizer)
 #   scripts/jellysim.sh build                        only installs and builds
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,12 +28,21 @@ install_missing_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# build DIR [cmake options...]: configure once, then build incrementally; the log stays in DIR.
+# build DIR [--targets "T1 T2 ..."] [cmake options...]: configure once, then build incrementally (all
+# targets, or only those named); the log stays in DIR. Warnings are errors (JELLYSIM_WERROR): every
+# build of this script, CI's included, is warning-free or fails.
 build() {
   local dir=$1; shift
+  local targets=()
+  if [ "${1:-}" = --targets ]; then
+    read -r -a targets <<<"$2"
+    shift 2
+    targets=(--target "${targets[@]}")
+  fi
   echo "Building in $dir ..."
   mkdir -p "$dir"
-  if ! { cmake -S . -B "$dir" -Wno-dev "$@" && cmake --build "$dir" -j"$JOBS"; } >"$dir/build.log" 2>&1; then
+  if ! { cmake -S . -B "$dir" -Wno-dev -DJELLYSIM_WERROR=ON "$@" &&
+         cmake --build "$dir" -j"$JOBS" "${targets[@]}"; } >"$dir/build.log" 2>&1; then
     tail -n 60 "$dir/build.log" >&2
     echo "build failed (full log: $dir/build.log)" >&2
     exit 1
@@ -50,6 +60,20 @@ build_sanitized() {
   fi
   CC=clang CXX=clang++ build build/sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
     -DJELLYSIM_SANITIZE=ON -DJELLYSIM_FUZZ=ON -DJELLYSIM_PYTHON=ON
+}
+
+# The ThreadSanitizer pass (clang, -fsanitize=thread): only the programs of the threaded tests are
+# built (the command line too, which the batch and determinism tests run), and only those tests run:
+# the worker pool, the serial writer thread, the path chooser, the mobility table built on threads,
+# the SPH evaluation on threads, the threaded batch and the one-versus-two-threads determinism runs.
+TSAN_TESTS='^(WorkerPool|SerialWorker|PathChooser)\.|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^BatchCli\.ThreadedBatch|^Determinism\..*Threads'
+build_tsan() {
+  if [ -f build/tsan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/tsan/CMakeCache.txt; then
+    rm -rf build/tsan
+  fi
+  CC=clang CXX=clang++ build build/tsan --targets "test_core test_coupling test_sph test_app" \
+    -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DJELLYSIM_TSAN=ON -DJELLYSIM_PYTHON=OFF \
+    -DJELLYSIM_BUILD_BENCH=OFF
 }
 
 command=${1:-run}
@@ -70,6 +94,10 @@ case "$command" in
     echo "== tests (clang, AddressSanitizer + UndefinedBehaviorSanitizer, the fuzzer; *Slow* tests in Release only) =="
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
-      ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 -E Slow ;;
+      ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 -E Slow
+    build_tsan
+    echo "== threaded tests (clang, ThreadSanitizer) =="
+    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+      ctest --test-dir build/tsan --output-on-failure -j"$JOBS" --timeout 900 -R "$TSAN_TESTS" ;;
   *) echo "usage: scripts/jellysim.sh [run [options] | test | build]" >&2; exit 2 ;;
 esac
