@@ -97,7 +97,7 @@ case "$command" in
       ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 -E Slow
     build_tsan
     echo "== threaded tests (clang, ThreadSanitizer) =="
-    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp \
       ctest --test-dir build/tsan --output-on-failure -j"$JOBS" --timeout 900 -R "$TSAN_TESTS" ;;
   *) echo "usage: scripts/jellysim.sh [run [options] | test | build]" >&2; exit 2 ;;
 esac
