@@ -4,6 +4,8 @@
 #   scripts/jellysim.sh test                         runs the whole test suite (Release, then ASan+UBSan
 #                                                    with clang, a short libFuzzer run included)
 #   scripts/jellysim.sh build                        only installs and builds
+#   scripts/jellysim.sh tsan                         the threaded tests under ThreadSanitizer (clang; not yet
+#                                                    part of `test`: its cold build is ~20 min on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -41,6 +43,26 @@ build() {
 }
 
 build_release() { build build/release -DCMAKE_BUILD_TYPE=Release; }
+
+# The ThreadSanitizer pass (clang, -fsanitize=thread, warnings as errors): only the programs of the
+# threaded tests (and the command line, which the batch and determinism tests run), and only those tests:
+# the worker pool, the serial writer thread, the path chooser, the mobility table built on threads, the
+# SPH evaluation on threads, the threaded batch and the one-versus-two-threads determinism runs.
+TSAN_TESTS='^(WorkerPool|SerialWorker|PathChooser)\.|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^BatchCli\.ThreadedBatch|^Determinism\..*Threads'
+build_tsan() {
+  if [ -f build/tsan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/tsan/CMakeCache.txt; then
+    rm -rf build/tsan
+  fi
+  echo "Building in build/tsan ..."
+  mkdir -p build/tsan
+  if ! { CC=clang CXX=clang++ cmake -S . -B build/tsan -Wno-dev -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
+           -DJELLYSIM_TSAN=ON -DJELLYSIM_WERROR=ON -DJELLYSIM_PYTHON=OFF -DJELLYSIM_BUILD_BENCH=OFF &&
+         cmake --build build/tsan -j"$JOBS" --target test_core test_coupling test_sph test_app; } >build/tsan/build.log 2>&1; then
+    tail -n 60 build/tsan/build.log >&2
+    echo "build failed (full log: build/tsan/build.log)" >&2
+    exit 1
+  fi
+}
 # The sanitizer pass is built with clang, which also builds the libFuzzer target (fuzz/): a cache
 # made by another compiler is started afresh. The Python module is built there too (JELLYSIM_PYTHON=ON:
 # its tests preload the ASan runtime into python3, docs/python.md).
@@ -71,5 +93,10 @@ case "$command" in
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
       ctest --test-dir build/sanitize --output-on-failure -j"$JOBS" --timeout 900 -E Slow ;;
-  *) echo "usage: scripts/jellysim.sh [run [options] | test | build]" >&2; exit 2 ;;
+  tsan)
+    build_tsan
+    echo "== threaded tests (clang, ThreadSanitizer) =="
+    TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp" \
+      ctest --test-dir build/tsan --output-on-failure -j"$JOBS" --timeout 900 -R "$TSAN_TESTS" ;;
+  *) echo "usage: scripts/jellysim.sh [run [options] | test | build | tsan]" >&2; exit 2 ;;
 esac

@@ -441,6 +441,7 @@ void for_interior_rows(const MacGrid& g, const Boundaries& b, Fn&& fn) {
 }
 
 inline Field& component(Velocity& v, int c) { return c == 0 ? v.u : v.v; }
+inline const Field& component(const Velocity& v, int c) { return c == 0 ? v.u : v.v; }
 
 struct HelmholtzCoefficients {
   double cx, cy, centre;
@@ -555,25 +556,25 @@ void ImplicitDiffusion::apply_explicit(Velocity& vel, const Boundaries& b, doubl
   apply_velocity_boundaries(vel, b);
 }
 
-int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
-                             int max_iterations) {
+namespace {
+
+// The passes of ImplicitDiffusion::solve's conjugate gradients: two faces at a time, reductions
+// with four partial results in a fixed order.
+
+struct InitialResidual {
+  double scale;  ///< max(max|u|, max|r|)
+  double rr;     ///< r·r
+  double r_max;  ///< max|r|
+};
+
+/// Pass 0: r = d = u − (I − νΔt∇²)u, with max|u|, max|r| and r·r.
+InitialResidual initial_residual(const Velocity& vel, const Boundaries& b, const HelmholtzCoefficients& h, Velocity& r_,
+                                 Velocity& d_) {
   using simd::abs2;
-  using simd::for_quads;
   using simd::max2;
-  if (nu_dt_m2 <= 0.0) return 0;
-  if (geometry_ == Geometry::axisymmetric) return solve_axisymmetric(vel, b, nu_dt_m2, relative_tolerance, max_iterations);
-  const MacGrid& g = vel.u.grid();
-  const Boundaries zero = b.homogeneous();
-  const HelmholtzCoefficients h(g, nu_dt_m2);
-  // Conjugate gradients for the correction e (homogeneous boundary values) of
-  // (I − νΔt∇²)e = u − (I − νΔt∇²)u = r, added to u as it is found. Only r, d and u are stored
-  // (A·d is recomputed where needed instead of kept), so that the solve streams three arrays;
-  // two faces at a time, reductions with four partial results in a fixed order.
-  // Pass 0: r = d = u − (I − νΔt∇²)u, with max|u|, max|r| and r·r.
-  apply_velocity_boundaries(vel, b);
   simd::Max4 vel_max, r_max;
   simd::Sum4 rr_sum;
-  for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
+  for_interior_rows(vel.u.grid(), b, [&](int c, int j, int i0, int i1) {
     const Field& f = component(vel, c);
     const double* u = f.ptr(0, j);
     const double* below = f.ptr(0, j - 1);
@@ -589,7 +590,7 @@ int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2
       rm = max2(rm, abs2(ri));
       rs += ri * ri;
     };
-    for_quads(
+    simd::for_quads(
         i0, i1,
         [&](int i) {
           pair(i, vel_max.a, r_max.a, rr_sum.a);
@@ -605,77 +606,113 @@ int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2
           rr_sum.a[0] += ri * ri;
         });
   });
-  const double scale = std::max(vel_max.total(), r_max.total());
-  const double target = relative_tolerance * scale;
-  double rr = rr_sum.total();
-  double residual_max = r_max.total();
+  return {std::max(vel_max.total(), r_max.total()), rr_sum.total(), r_max.total()};
+}
+
+/// Pass 1: d·Ad.
+double d_dot_ad(const Velocity& d_, const Boundaries& b, const HelmholtzCoefficients& h) {
+  simd::Sum4 dq_sum;
+  for_interior_rows(d_.u.grid(), b, [&](int c, int j, int i0, int i1) {
+    const Field& f = component(d_, c);
+    const double* d = f.ptr(0, j);
+    const double* below = f.ptr(0, j - 1);
+    const double* above = f.ptr(0, j + 1);
+    simd::for_quads(
+        i0, i1,
+        [&](int i) {
+          dq_sum.a += load2(d + i) * h.apply2(d, below, above, i);
+          dq_sum.b += load2(d + i + 2) * h.apply2(d, below, above, i + 2);
+        },
+        [&](int i) { dq_sum.a += load2(d + i) * h.apply2(d, below, above, i); },
+        [&](int i) { dq_sum.a[0] += d[i] * h.apply(d, below, above, i); });
+  });
+  return dq_sum.total();
+}
+
+struct UpdatedResidual {
+  double rr;     ///< r·r
+  double r_max;  ///< max|r|
+};
+
+/// Pass 2: u += α d, r −= α Ad, with r·r and max|r|.
+UpdatedResidual step_along(const Velocity& d_, const Boundaries& b, const HelmholtzCoefficients& h, double alpha,
+                           Velocity& vel, Velocity& r_) {
+  using simd::abs2;
+  using simd::max2;
+  simd::Sum4 rr_new_sum;
+  simd::Max4 r_new_max;
+  for_interior_rows(d_.u.grid(), b, [&](int c, int j, int i0, int i1) {
+    const Field& f = component(d_, c);
+    const double* d = f.ptr(0, j);
+    const double* below = f.ptr(0, j - 1);
+    const double* above = f.ptr(0, j + 1);
+    double* r = component(r_, c).ptr(0, j);
+    double* u = component(vel, c).ptr(0, j);
+    auto pair = [&](int i, Double2& rs, Double2& rm) {
+      store2(u + i, load2(u + i) + alpha * load2(d + i));
+      const Double2 ri = load2(r + i) - alpha * h.apply2(d, below, above, i);
+      store2(r + i, ri);
+      rs += ri * ri;
+      rm = max2(rm, abs2(ri));
+    };
+    simd::for_quads(
+        i0, i1,
+        [&](int i) {
+          pair(i, rr_new_sum.a, r_new_max.a);
+          pair(i + 2, rr_new_sum.b, r_new_max.b);
+        },
+        [&](int i) { pair(i, rr_new_sum.a, r_new_max.a); },
+        [&](int i) {
+          u[i] += alpha * d[i];
+          const double ri = r[i] - alpha * h.apply(d, below, above, i);
+          r[i] = ri;
+          rr_new_sum.a[0] += ri * ri;
+          r_new_max.a[0] = std::max(r_new_max.a[0], std::abs(ri));
+        });
+  });
+  return {rr_new_sum.total(), r_new_max.total()};
+}
+
+/// Pass 3: d = r + β d.
+void next_direction(const Velocity& r_, const Boundaries& b, double beta, Velocity& d_) {
+  for_interior_rows(r_.u.grid(), b, [&](int c, int j, int i0, int i1) {
+    const double* r = component(r_, c).ptr(0, j);
+    double* d = component(d_, c).ptr(0, j);
+    for (int i = i0; i < i1; ++i) d[i] = r[i] + beta * d[i];
+  });
+}
+
+}  // namespace
+
+int ImplicitDiffusion::solve(Velocity& vel, const Boundaries& b, double nu_dt_m2, double relative_tolerance,
+                             int max_iterations) {
+  if (nu_dt_m2 <= 0.0) return 0;
+  if (geometry_ == Geometry::axisymmetric) return solve_axisymmetric(vel, b, nu_dt_m2, relative_tolerance, max_iterations);
+  const Boundaries zero = b.homogeneous();
+  const HelmholtzCoefficients h(vel.u.grid(), nu_dt_m2);
+  // Conjugate gradients for the correction e (homogeneous boundary values) of
+  // (I − νΔt∇²)e = u − (I − νΔt∇²)u = r, added to u as it is found. Only r, d and u are stored
+  // (A·d is recomputed where needed instead of kept), so that the solve streams three arrays.
+  apply_velocity_boundaries(vel, b);
+  const InitialResidual start = initial_residual(vel, b, h, r_, d_);
+  const double target = relative_tolerance * start.scale;
+  double rr = start.rr;
+  double residual_max = start.r_max;
   // The max-norm stopping test uses the residual max taken in the pass that updates r.
   int it = 0;
   for (; it < max_iterations && residual_max > target; ++it) {
     apply_velocity_boundaries(d_, zero);
-    simd::Sum4 dq_sum;  // pass 1: d·Ad
-    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-      const Field& f = component(d_, c);
-      const double* d = f.ptr(0, j);
-      const double* below = f.ptr(0, j - 1);
-      const double* above = f.ptr(0, j + 1);
-      for_quads(
-          i0, i1,
-          [&](int i) {
-            dq_sum.a += load2(d + i) * h.apply2(d, below, above, i);
-            dq_sum.b += load2(d + i + 2) * h.apply2(d, below, above, i + 2);
-          },
-          [&](int i) { dq_sum.a += load2(d + i) * h.apply2(d, below, above, i); },
-          [&](int i) { dq_sum.a[0] += d[i] * h.apply(d, below, above, i); });
-    });
-    const double dq = dq_sum.total();
+    const double dq = d_dot_ad(d_, b, h);
     if (!(dq > 0.0)) break;
-    const double alpha = rr / dq;
-    simd::Sum4 rr_new_sum;  // pass 2: u += α d, r −= α Ad, r·r and max|r|
-    simd::Max4 r_new_max;
-    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {
-      const Field& f = component(d_, c);
-      const double* d = f.ptr(0, j);
-      const double* below = f.ptr(0, j - 1);
-      const double* above = f.ptr(0, j + 1);
-      double* r = component(r_, c).ptr(0, j);
-      double* u = component(vel, c).ptr(0, j);
-      auto pair = [&](int i, Double2& rs, Double2& rm) {
-        store2(u + i, load2(u + i) + alpha * load2(d + i));
-        const Double2 ri = load2(r + i) - alpha * h.apply2(d, below, above, i);
-        store2(r + i, ri);
-        rs += ri * ri;
-        rm = max2(rm, abs2(ri));
-      };
-      for_quads(
-          i0, i1,
-          [&](int i) {
-            pair(i, rr_new_sum.a, r_new_max.a);
-            pair(i + 2, rr_new_sum.b, r_new_max.b);
-          },
-          [&](int i) { pair(i, rr_new_sum.a, r_new_max.a); },
-          [&](int i) {
-            u[i] += alpha * d[i];
-            const double ri = r[i] - alpha * h.apply(d, below, above, i);
-            r[i] = ri;
-            rr_new_sum.a[0] += ri * ri;
-            r_new_max.a[0] = std::max(r_new_max.a[0], std::abs(ri));
-          });
-    });
-    const double rr_new = rr_new_sum.total();
-    residual_max = r_new_max.total();
-    if (!(rr_new == rr_new)) break;  // NaN: give up rather than run to max_iterations
-    if (!(residual_max > target)) {  // converged: the next direction is not needed
+    const UpdatedResidual updated = step_along(d_, b, h, rr / dq, vel, r_);
+    residual_max = updated.r_max;
+    if (!(updated.rr == updated.rr)) break;  // NaN: give up rather than run to max_iterations
+    if (!(residual_max > target)) {          // converged: the next direction is not needed
       ++it;
       break;
     }
-    const double beta = rr_new / rr;
-    rr = rr_new;
-    for_interior_rows(g, b, [&](int c, int j, int i0, int i1) {  // pass 3: d = r + β d
-      const double* r = component(r_, c).ptr(0, j);
-      double* d = component(d_, c).ptr(0, j);
-      for (int i = i0; i < i1; ++i) d[i] = r[i] + beta * d[i];
-    });
+    next_direction(r_, b, updated.rr / rr, d_);
+    rr = updated.rr;
   }
   apply_velocity_boundaries(vel, b);
   return it;

@@ -226,22 +226,12 @@ FrameGeometry GeometryBuilder::build(const jellyfish::SliceFrame& frame) const {
   return out;
 }
 
-void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& out) const {
-  const GeometrySettings& s = settings_;
-  const NoiseSettings& ns = s.noise;
-  const RenderingSlice slice = make_rendering_slice(frame, s.latitude_samples, s.tentacle_samples, s.interpolant);
-  const std::vector<Row> rows = umbrella_rows(slice);
+namespace {
 
-  out.time_s = frame.time_s;
-  UmbrellaLayout& L = out.umbrella;
-  L = {static_cast<int>(rows.size()), s.disc_points, (static_cast<int>(rows.size()) - 2) / 2};
+/// The unperturbed discs (Figure 7.6): ring r of the umbrella grid on row r's disc, at the angles σ_j.
+void place_discs(const std::vector<Row>& rows, const UmbrellaLayout& L, std::vector<Vec3>& x) {
   const int J = L.disc_points;
-  const double length = length_scale_m_;
   const AngleTable disc_angles(J);  // σ_j, eq. 7.12
-
-  // Unperturbed discs (Figure 7.6) and their eq. 7.9 normals.
-  std::vector<Vec3>& x = out.mesh.positions;
-  std::vector<Vec3>& n = out.mesh.normals;
   x.resize(L.vertex_count());
   x[L.vertex(0, 0)] = lift(rows.front().disc.centre);
   x[L.vertex(L.rows - 1, 0)] = lift(rows.back().disc.centre);
@@ -250,117 +240,169 @@ void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& o
     Vec3* ring = x.data() + L.vertex(r, 0);
     for (std::size_t j = 0; j < static_cast<std::size_t>(J); ++j) ring[j] = disc.point(disc_angles.cos[j], disc_angles.sin[j]);
   }
-  umbrella_normals(L, x, n);
+}
 
-  // Noise along the unperturbed normals (poles stay: d_i = 0 there and σ is undefined). The terms
-  // that depend on j only are tabulated; the Perlin term depends on (d_i, d_j), which repeat
-  // (d_i: row r and rows − 1 − r; d_j: j and J − j), so each distinct pair is evaluated once.
-  std::vector<double> structural(static_cast<std::size_t>(J)), ridge(static_cast<std::size_t>(J));
+/// The umbrella noise's tables. The terms that depend on j only are tabulated; the Perlin term
+/// depends on (d_i, d_j), which repeat (d_i: row r and rows − 1 − r; d_j: j and J − j), so each
+/// distinct pair is evaluated once.
+struct UmbrellaNoise {
+  std::vector<double> structural, ridge;  // [j]
+  std::vector<double> perlin;             // [min(r, rows − 1 − r)][min(j, J − j)], when unstructured
+  bool unstructured = false;
+  int half_j = 0;
+};
+
+UmbrellaNoise umbrella_noise(const ImprovedNoise& noise, const NoiseSettings& ns, double length,
+                             const UmbrellaLayout& L, double time_s) {
+  const int J = L.disc_points;
+  UmbrellaNoise t;
+  t.structural.resize(static_cast<std::size_t>(J));
+  t.ridge.resize(static_cast<std::size_t>(J));
   for (int j = 0; j < J; ++j) {
     const double sigma = kTwoPi * j / J;  // eq. 7.12
-    structural[static_cast<std::size_t>(j)] =
+    t.structural[static_cast<std::size_t>(j)] =
         ns.structural_weight * structural_noise(length, ns.structural_frequency, sigma, ns.structural_absolute);
-    ridge[static_cast<std::size_t>(j)] = compression_ridge(ns.compression_frequency, sigma);
+    t.ridge[static_cast<std::size_t>(j)] = compression_ridge(ns.compression_frequency, sigma);
   }
-  const bool unstructured = ns.unstructured_weight != 0.0;
-  const int half_rows = (L.rows - 1) / 2, half_j = J / 2;
-  std::vector<double> perlin;  // [min(r, rows − 1 − r)][min(j, J − j)]
-  if (unstructured) {
-    perlin.resize(static_cast<std::size_t>((half_rows + 1) * (half_j + 1)));
+  t.unstructured = ns.unstructured_weight != 0.0;
+  const int half_rows = (L.rows - 1) / 2;
+  t.half_j = J / 2;
+  if (t.unstructured) {
+    t.perlin.resize(static_cast<std::size_t>((half_rows + 1) * (t.half_j + 1)));
     for (int ri = 1; ri <= half_rows; ++ri) {
       const double d_i = latitude_distance(ri, 0, L.rows - 1, L.rows - 1);
-      for (int jj = 0; jj <= half_j; ++jj)
-        perlin[static_cast<std::size_t>(ri * (half_j + 1) + jj)] =
-            unstructured_noise(noise_, ns, length, d_i, longitude_distance(jj, J), frame.time_s);
+      for (int jj = 0; jj <= t.half_j; ++jj)
+        t.perlin[static_cast<std::size_t>(ri * (t.half_j + 1) + jj)] =
+            unstructured_noise(noise, ns, length, d_i, longitude_distance(jj, J), time_s);
     }
   }
+  return t;
+}
+
+/// Noise along the unperturbed normals (poles stay: d_i = 0 there and σ is undefined).
+void perturb_umbrella(const std::vector<Row>& rows, const jellyfish::SliceFrame& frame, const NoiseSettings& ns,
+                      double length, const UmbrellaNoise& t, const UmbrellaLayout& L, std::vector<Vec3>& x,
+                      const std::vector<Vec3>& n) {
+  const int J = L.disc_points;
   for (int r = 1; r + 1 < L.rows; ++r) {
     const Row& row = rows[static_cast<std::size_t>(r)];
     const double kappa = row.exumbrella ? contraction_at(frame.muscles, frame.umbrella.size(), row.u, ns.max_contraction) : 0.0;
     const double compression_scale = length * kappa;  // eq. 7.15: ϑ κ {…}
     const double side = row.exumbrella || !ns.bend_shell ? 1.0 : -1.0;
-    const double* noise_row = unstructured ? perlin.data() + std::min(r, L.rows - 1 - r) * (half_j + 1) : nullptr;
+    const double* noise_row = t.unstructured ? t.perlin.data() + std::min(r, L.rows - 1 - r) * (t.half_j + 1) : nullptr;
     Vec3* ring = x.data() + L.vertex(r, 0);
     const Vec3* normal = n.data() + L.vertex(r, 0);
     for (int j = 0; j < J; ++j) {
       const auto k = static_cast<std::size_t>(j);
-      double c = structural[k];
-      if (row.exumbrella) c += ns.compression_weight * (compression_scale * ridge[k]);
-      if (unstructured) c += side * ns.unstructured_weight * noise_row[std::min(j, J - j)];
+      double c = t.structural[k];
+      if (row.exumbrella) c += ns.compression_weight * (compression_scale * t.ridge[k]);
+      if (t.unstructured) c += side * ns.unstructured_weight * noise_row[std::min(j, J - j)];
       ring[k] += c * normal[k];
     }
   }
-  umbrella_normals(L, x, n);  // §7.4: normals of the perturbed surface
+}
 
-  umbrella_indices(L, out.mesh.indices);
-  out.mesh.parts.resize(1);
-  out.mesh.parts[0] = {"umbrella", 0, static_cast<std::uint32_t>(out.mesh.indices.size())};
-
-  // Tentacles: discs between opposing slice tentacles, one 3D strand per angle.
-  const std::size_t T = slice.tentacles.size();
-  const std::size_t strands = T / 2 * static_cast<std::size_t>(s.tentacle_count) + T % 2;
-  out.tentacle_lines.resize(strands);
-  const AngleTable strand_angles(s.tentacle_count);
+/// The tentacle strands' noise along a pair's discs: [m][min(j, count − j)].
+void strand_noise_table(const ImprovedNoise& noise, const GeometrySettings& s, double length, double time_s,
+                        std::size_t M, std::vector<double>& table) {
+  const NoiseSettings& ns = s.noise;
   const int half_count = s.tentacle_count / 2;
+  table.resize(M * static_cast<std::size_t>(half_count + 1));
+  for (std::size_t m = 0; m < M; ++m) {
+    const double d_i = static_cast<double>(m) / static_cast<double>(M - 1);
+    for (int jj = 0; jj <= half_count; ++jj)
+      table[m * static_cast<std::size_t>(half_count + 1) + static_cast<std::size_t>(jj)] =
+          ns.unstructured_weight *
+          unstructured_noise(noise, ns, length, d_i, longitude_distance(jj, s.tentacle_count), time_s);
+  }
+}
+
+/// Tentacles: discs between opposing slice tentacles, one 3D strand per angle (an unpaired middle
+/// strand stays a single line).
+void build_strands(const RenderingSlice& slice, const GeometrySettings& s, const ImprovedNoise& noise, double length,
+                   double time_s, std::vector<std::vector<Vec3>>& lines) {
+  const std::size_t T = slice.tentacles.size();
+  lines.resize(T / 2 * static_cast<std::size_t>(s.tentacle_count) + T % 2);
+  const AngleTable strand_angles(s.tentacle_count);
+  const std::size_t row_length = static_cast<std::size_t>(s.tentacle_count / 2 + 1);
+  const bool noisy = s.noise.tentacles && s.noise.unstructured_weight != 0.0;
   std::vector<Disc> discs;
-  std::vector<double> strand_noise;  // [m][min(j, count − j)]
+  std::vector<double> strand_noise;
   std::size_t line_index = 0;
   for (std::size_t t = 0; t < (T + 1) / 2; ++t) {
     const auto& left = slice.tentacles[t];
     const auto& right = slice.tentacles[T - 1 - t];
     const std::size_t M = left.size();
-    if (t == T - 1 - t) {  // an unpaired middle strand stays a single line
-      std::vector<Vec3>& line = out.tentacle_lines[line_index++];
+    if (t == T - 1 - t) {
+      std::vector<Vec3>& line = lines[line_index++];
       line.resize(M);
       for (std::size_t m = 0; m < M; ++m) line[m] = lift(left[m]);
       continue;
     }
     discs.resize(M);
     for (std::size_t m = 0; m < M; ++m) discs[m] = disc_of(left[m], right[m], slice.axis);
-    const bool noisy = ns.tentacles && unstructured;
-    if (noisy) {
-      strand_noise.resize(M * static_cast<std::size_t>(half_count + 1));
-      for (std::size_t m = 0; m < M; ++m) {
-        const double d_i = static_cast<double>(m) / static_cast<double>(M - 1);
-        for (int jj = 0; jj <= half_count; ++jj)
-          strand_noise[m * static_cast<std::size_t>(half_count + 1) + static_cast<std::size_t>(jj)] =
-              ns.unstructured_weight *
-              unstructured_noise(noise_, ns, length, d_i, longitude_distance(jj, s.tentacle_count), frame.time_s);
-      }
-    }
+    if (noisy) strand_noise_table(noise, s, length, time_s, M, strand_noise);
     for (int j = 0; j < s.tentacle_count; ++j) {
       const double cs = strand_angles.cos[static_cast<std::size_t>(j)], sn = strand_angles.sin[static_cast<std::size_t>(j)];
       const auto jj = static_cast<std::size_t>(std::min(j, s.tentacle_count - j));
-      std::vector<Vec3>& line = out.tentacle_lines[line_index++];
+      std::vector<Vec3>& line = lines[line_index++];
       line.resize(M);
       for (std::size_t m = 0; m < M; ++m) {
         Vec3 p = discs[m].point(cs, sn);
-        if (noisy) p += strand_noise[m * static_cast<std::size_t>(half_count + 1) + jj] * discs[m].direction(cs, sn);
+        if (noisy) p += strand_noise[m * row_length + jj] * discs[m].direction(cs, sn);
         line[m] = p;
       }
     }
   }
-  if (!out.tentacle_lines.empty()) {
-    const AngleTable tube_angles(s.tube_sides);
-    const auto S = static_cast<std::size_t>(s.tube_sides);
-    std::size_t vertices = x.size(), indices = out.mesh.indices.size();
-    for (const auto& line : out.tentacle_lines) {
-      vertices += line.size() * S;
-      indices += (line.size() - 1) * S * 6;
-    }
-    const std::size_t first_index = out.mesh.indices.size();
-    std::size_t vertex = x.size(), index = first_index;
-    x.resize(vertices);
-    n.resize(vertices);
-    out.mesh.indices.resize(indices);
-    for (const auto& line : out.tentacle_lines) {
-      write_tube(line, tube_angles, s.tentacle_radius_m, out.mesh, vertex, index);
-      vertex += line.size() * S;
-      index += (line.size() - 1) * S * 6;
-    }
-    out.mesh.parts.push_back({"tentacles", static_cast<std::uint32_t>(first_index),
-                              static_cast<std::uint32_t>(indices - first_index)});
+}
+
+/// A tube around every strand, after the umbrella in the mesh (part "tentacles").
+void append_tentacle_tubes(const std::vector<std::vector<Vec3>>& lines, const GeometrySettings& s, Mesh& mesh) {
+  const AngleTable tube_angles(s.tube_sides);
+  const auto S = static_cast<std::size_t>(s.tube_sides);
+  std::size_t vertices = mesh.positions.size(), indices = mesh.indices.size();
+  for (const auto& line : lines) {
+    vertices += line.size() * S;
+    indices += (line.size() - 1) * S * 6;
   }
+  const std::size_t first_index = mesh.indices.size();
+  std::size_t vertex = mesh.positions.size(), index = first_index;
+  mesh.positions.resize(vertices);
+  mesh.normals.resize(vertices);
+  mesh.indices.resize(indices);
+  for (const auto& line : lines) {
+    write_tube(line, tube_angles, s.tentacle_radius_m, mesh, vertex, index);
+    vertex += line.size() * S;
+    index += (line.size() - 1) * S * 6;
+  }
+  mesh.parts.push_back({"tentacles", static_cast<std::uint32_t>(first_index),
+                        static_cast<std::uint32_t>(indices - first_index)});
+}
+
+}  // namespace
+
+void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& out) const {
+  const GeometrySettings& s = settings_;
+  const RenderingSlice slice = make_rendering_slice(frame, s.latitude_samples, s.tentacle_samples, s.interpolant);
+  const std::vector<Row> rows = umbrella_rows(slice);
+
+  out.time_s = frame.time_s;
+  UmbrellaLayout& L = out.umbrella;
+  L = {static_cast<int>(rows.size()), s.disc_points, (static_cast<int>(rows.size()) - 2) / 2};
+  std::vector<Vec3>& x = out.mesh.positions;
+  std::vector<Vec3>& n = out.mesh.normals;
+  place_discs(rows, L, x);
+  umbrella_normals(L, x, n);  // eq. 7.9
+  const UmbrellaNoise tables = umbrella_noise(noise_, s.noise, length_scale_m_, L, frame.time_s);
+  perturb_umbrella(rows, frame, s.noise, length_scale_m_, tables, L, x, n);
+  umbrella_normals(L, x, n);  // §7.4: normals of the perturbed surface
+
+  umbrella_indices(L, out.mesh.indices);
+  out.mesh.parts.resize(1);
+  out.mesh.parts[0] = {"umbrella", 0, static_cast<std::uint32_t>(out.mesh.indices.size())};
+
+  build_strands(slice, s, noise_, length_scale_m_, frame.time_s, out.tentacle_lines);
+  if (!out.tentacle_lines.empty()) append_tentacle_tubes(out.tentacle_lines, s, out.mesh);
 }
 
 Animation build_animation(const std::vector<jellyfish::SliceFrame>& frames, const GeometrySettings& settings) {

@@ -250,8 +250,9 @@ double largest_difference(const GlbBody& body, const std::vector<std::size_t>& k
 
 }  // namespace
 
-std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
-                      const std::vector<GlbMaterial>& materials, int every, double frames_per_second) {
+namespace {
+
+void validate_glb_bodies(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s, int every) {
   if (bodies.empty() || times_s.empty()) throw InputError("glb: no bodies or no frames");
   if (every < 1) throw InputError("glb: every must be at least 1");
   for (const GlbBody& body : bodies) {
@@ -263,104 +264,152 @@ std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<doub
     if (!body.root.empty() && body.root.size() != times_s.size())
       throw InputError("glb: " + body.name + " needs one root position per frame");
   }
-  const std::size_t frames = times_s.size();
+}
+
+/// The frame times from the first, in single precision (strictly increasing there, or InputError).
+std::vector<float> single_precision_times(const std::vector<double>& times_s) {
   std::vector<float> times;
   for (double t : times_s) times.push_back(static_cast<float>(t - times_s.front()));
-  for (std::size_t k = 1; k < frames; ++k)
+  for (std::size_t k = 1; k < times.size(); ++k)
     if (!(times[k] > times[k - 1])) throw InputError("animation frame times too close for single precision");
-  const std::vector<std::size_t> kept = kept_frames(frames, every);
+  return times;
+}
 
-  GlbBuilder b;
-  nlohmann::json nodes = nlohmann::json::array(), meshes = nlohmann::json::array(),
-                 json_materials = nlohmann::json::array(), scene_nodes = nlohmann::json::array(),
-                 samplers = nlohmann::json::array(), channels = nlohmann::json::array();
-  std::vector<std::string> material_names;
-  auto material_for = [&](const std::string& part) {
-    const auto at = std::find(material_names.begin(), material_names.end(), part);
-    if (at != material_names.end()) return static_cast<int>(at - material_names.begin());
-    const auto m = std::find_if(materials.begin(), materials.end(), [&](const GlbMaterial& g) { return g.part == part; });
-    json_materials.push_back(material_json(part, m == materials.end() ? nullptr : &*m));
-    material_names.push_back(part);
-    return static_cast<int>(material_names.size()) - 1;
-  };
-  const int all_times = frames > 1 ? b.scalars(times, true) : -1;
-  int kept_times = -1;
-  if (!kept.empty()) {
-    std::vector<float> t{times.front()};
-    for (std::size_t k : kept) t.push_back(times[k]);
-    kept_times = kept.size() + 1 == frames ? all_times : b.scalars(t, true);
+bool root_moves(const GlbBody& body) {
+  return !body.root.empty() && std::any_of(body.root.begin(), body.root.end(), [&](const Vec3& r) {
+           return r.x != body.root[0].x || r.y != body.root[0].y || r.z != body.root[0].z;
+         });
+}
+
+/// The glTF document of glb_bytes, a body at a time: every body a root node (its translation) over
+/// a mesh node (the quantization scale), its frames after the first as morph targets.
+class GlbScene {
+ public:
+  GlbScene(const std::vector<double>& times_s, const std::vector<GlbMaterial>& materials, int every)
+      : materials_(materials), frames_(times_s.size()), kept_(kept_frames(frames_, every)) {
+    const std::vector<float> times = single_precision_times(times_s);
+    all_times_ = frames_ > 1 ? b_.scalars(times, true) : -1;
+    if (!kept_.empty()) {
+      std::vector<float> t{times.front()};
+      for (std::size_t k : kept_) t.push_back(times[k]);
+      kept_times_ = kept_.size() + 1 == frames_ ? all_times_ : b_.scalars(t, true);
+    }
   }
-  for (const GlbBody& body : bodies) {
+
+  void add_body(const GlbBody& body) {
+    const double scale = largest_difference(body, kept_);
+    nlohmann::json mesh = {{"name", body.name}, {"primitives", primitives(body, scale)}};
+    if (!kept_.empty()) mesh["weights"] = std::vector<double>(kept_.size(), 0.0);
+    meshes_.push_back(mesh);
+    const int mesh_node = static_cast<int>(nodes_.size()) + 1;
+    nlohmann::json root_node = {{"name", body.name}, {"children", {mesh_node}}};
+    if (!body.root.empty()) root_node["translation"] = {body.root[0].x, body.root[0].y, body.root[0].z};
+    scene_nodes_.push_back(nodes_.size());
+    nodes_.push_back(root_node);
+    nodes_.push_back({{"name", body.name + "_mesh"}, {"mesh", meshes_.size() - 1}, {"scale", {scale, scale, scale}}});
+    if (!kept_.empty()) animate_weights(mesh_node);
+    if (root_moves(body) && frames_ > 1) {
+      samplers_.push_back(
+          {{"input", all_times_}, {"output", b_.vec3(body.root, 0, frames_, nullptr, false)}, {"interpolation", "LINEAR"}});
+      channels_.push_back({{"sampler", samplers_.size() - 1}, {"target", {{"node", mesh_node - 1}, {"path", "translation"}}}});
+    }
+  }
+
+  std::string bytes(double frames_per_second) {
+    nlohmann::json json = {{"asset", asset(frames_per_second)},
+                           {"scene", 0},
+                           {"scenes", {{{"nodes", scene_nodes_}}}},
+                           {"nodes", nodes_},
+                           {"materials", materials_json_},
+                           {"meshes", meshes_}};
+    if (!kept_.empty()) {
+      json["extensionsUsed"] = {"KHR_mesh_quantization"};
+      json["extensionsRequired"] = {"KHR_mesh_quantization"};
+    }
+    if (!channels_.empty()) {
+      nlohmann::json swim = {{"name", "swim"}};
+      swim["samplers"] = samplers_;
+      swim["channels"] = channels_;
+      json["animations"] = nlohmann::json::array({swim});
+    }
+    json["accessors"] = b_.accessors;
+    json["bufferViews"] = b_.buffer_views;
+    while (b_.bin.size() % 4 != 0) b_.bin.push_back('\0');
+    json["buffers"] = {{{"byteLength", b_.bin.size()}}};
+    return glb_container(json, std::move(b_.bin));
+  }
+
+ private:
+  /// The index of the material of a mesh part (added on first use).
+  int material_for(const std::string& part) {
+    const auto at = std::find(material_names_.begin(), material_names_.end(), part);
+    if (at != material_names_.end()) return static_cast<int>(at - material_names_.begin());
+    const auto m = std::find_if(materials_.begin(), materials_.end(), [&](const GlbMaterial& g) { return g.part == part; });
+    materials_json_.push_back(material_json(part, m == materials_.end() ? nullptr : &*m));
+    material_names_.push_back(part);
+    return static_cast<int>(material_names_.size()) - 1;
+  }
+
+  nlohmann::json primitives(const GlbBody& body, double scale) {
     const Mesh& first = body.first;
-    const double scale = largest_difference(body, kept);
     std::vector<Vec3> base(first.positions);
     for (Vec3& p : base) p = (1.0 / scale) * p;
-    nlohmann::json primitives = nlohmann::json::array();
+    nlohmann::json list = nlohmann::json::array();
     for (const MeshPart& part : first.parts) {
       const VertexRange range = vertex_range(first, part);
       nlohmann::json primitive = {
           {"attributes",
-           {{"POSITION", b.vec3(base, range.first, range.count, nullptr)},
-            {"NORMAL", b.vec3(first.normals, range.first, range.count, nullptr)}}},
-          {"indices", b.indices(first, part, range.first)},
+           {{"POSITION", b_.vec3(base, range.first, range.count, nullptr)},
+            {"NORMAL", b_.vec3(first.normals, range.first, range.count, nullptr)}}},
+          {"indices", b_.indices(first, part, range.first)},
           {"material", material_for(part.name)},
           {"mode", 4}};
       nlohmann::json targets = nlohmann::json::array();
-      for (std::size_t k : kept)
-        targets.push_back({{"POSITION", b.quantized_differences(body.positions[k], first.positions, range.first,
-                                                                range.count, scale)}});
+      for (std::size_t k : kept_)
+        targets.push_back({{"POSITION", b_.quantized_differences(body.positions[k], first.positions, range.first,
+                                                                 range.count, scale)}});
       if (!targets.empty()) primitive["targets"] = targets;
-      primitives.push_back(primitive);
+      list.push_back(primitive);
     }
-    nlohmann::json mesh = {{"name", body.name}, {"primitives", primitives}};
-    if (!kept.empty()) mesh["weights"] = std::vector<double>(kept.size(), 0.0);
-    meshes.push_back(mesh);
-    const int mesh_node = static_cast<int>(nodes.size()) + 1;
-    nlohmann::json root_node = {{"name", body.name}, {"children", {mesh_node}}};
-    if (!body.root.empty()) root_node["translation"] = {body.root[0].x, body.root[0].y, body.root[0].z};
-    scene_nodes.push_back(nodes.size());
-    nodes.push_back(root_node);
-    nodes.push_back({{"name", body.name + "_mesh"}, {"mesh", meshes.size() - 1}, {"scale", {scale, scale, scale}}});
-    if (!kept.empty()) {
-      std::vector<std::uint8_t> weights;
-      for (std::size_t key = 0; key <= kept.size(); ++key)
-        for (std::size_t t = 1; t <= kept.size(); ++t) weights.push_back(t == key ? 255 : 0);
-      samplers.push_back({{"input", kept_times}, {"output", b.unit_bytes(weights)}, {"interpolation", "LINEAR"}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", mesh_node}, {"path", "weights"}}}});
-    }
-    const bool moves = !body.root.empty() && std::any_of(body.root.begin(), body.root.end(), [&](const Vec3& r) {
-      return r.x != body.root[0].x || r.y != body.root[0].y || r.z != body.root[0].z;
-    });
-    if (moves && frames > 1) {
-      samplers.push_back({{"input", all_times}, {"output", b.vec3(body.root, 0, frames, nullptr, false)}, {"interpolation", "LINEAR"}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", mesh_node - 1}, {"path", "translation"}}}});
-    }
+    return list;
   }
-  // The frame rate and count, for tools that set a scene up from the file (blender_import.py).
-  nlohmann::json asset = {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}};
-  asset["extras"] = {{"frame_count", frames}};
-  if (frames_per_second > 0.0) asset["extras"]["frames_per_second"] = frames_per_second;
-  nlohmann::json json = {{"asset", asset},
-                         {"scene", 0},
-                         {"scenes", {{{"nodes", scene_nodes}}}},
-                         {"nodes", nodes},
-                         {"materials", json_materials},
-                         {"meshes", meshes}};
-  if (!kept.empty()) {
-    json["extensionsUsed"] = {"KHR_mesh_quantization"};
-    json["extensionsRequired"] = {"KHR_mesh_quantization"};
+
+  /// The morph weights' animation: frame 0 with no target, then one target after another.
+  void animate_weights(int mesh_node) {
+    std::vector<std::uint8_t> weights;
+    for (std::size_t key = 0; key <= kept_.size(); ++key)
+      for (std::size_t t = 1; t <= kept_.size(); ++t) weights.push_back(t == key ? 255 : 0);
+    samplers_.push_back({{"input", kept_times_}, {"output", b_.unit_bytes(weights)}, {"interpolation", "LINEAR"}});
+    channels_.push_back({{"sampler", samplers_.size() - 1}, {"target", {{"node", mesh_node}, {"path", "weights"}}}});
   }
-  if (!channels.empty()) {
-    nlohmann::json swim = {{"name", "swim"}};
-    swim["samplers"] = samplers;
-    swim["channels"] = channels;
-    json["animations"] = nlohmann::json::array({swim});
+
+  /// The frame rate and count, for tools that set a scene up from the file (blender_import.py).
+  nlohmann::json asset(double frames_per_second) const {
+    nlohmann::json a = {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}};
+    a["extras"] = {{"frame_count", frames_}};
+    if (frames_per_second > 0.0) a["extras"]["frames_per_second"] = frames_per_second;
+    return a;
   }
-  json["accessors"] = b.accessors;
-  json["bufferViews"] = b.buffer_views;
-  while (b.bin.size() % 4 != 0) b.bin.push_back('\0');
-  json["buffers"] = {{{"byteLength", b.bin.size()}}};
-  return glb_container(json, std::move(b.bin));
+
+  const std::vector<GlbMaterial>& materials_;
+  std::size_t frames_;
+  std::vector<std::size_t> kept_;
+  GlbBuilder b_;
+  int all_times_ = -1, kept_times_ = -1;
+  nlohmann::json nodes_ = nlohmann::json::array(), meshes_ = nlohmann::json::array(),
+                 materials_json_ = nlohmann::json::array(), scene_nodes_ = nlohmann::json::array(),
+                 samplers_ = nlohmann::json::array(), channels_ = nlohmann::json::array();
+  std::vector<std::string> material_names_;
+};
+
+}  // namespace
+
+std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
+                      const std::vector<GlbMaterial>& materials, int every, double frames_per_second) {
+  validate_glb_bodies(bodies, times_s, every);
+  GlbScene scene(times_s, materials, every);
+  for (const GlbBody& body : bodies) scene.add_body(body);
+  return scene.bytes(frames_per_second);
 }
 
 std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials) {

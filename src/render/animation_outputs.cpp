@@ -385,148 +385,248 @@ void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::M
 
 }  // namespace
 
-AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish::SliceFrame>>& school,
-                                         const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
-                                         const io::OutputDir& out, const FrameProgress& progress,
-                                         const ObstacleFrames& obstacles, const std::vector<std::vector<Vec2>>& tracers) {
+namespace {
+
+using School = std::vector<std::vector<jellyfish::SliceFrame>>;
+
+void check_recorded_frames(const School& school, const std::vector<std::uint64_t>& seeds,
+                           const ObstacleFrames& obstacles) {
   if (school.empty() || school.front().empty()) throw InputError("no slice frames to render");
   if (seeds.size() != school.size()) throw InputError("one noise seed per jellyfish is needed");
-  const std::vector<jellyfish::SliceFrame>& frames = school.front();
   for (const auto& series : school)
-    if (series.size() != frames.size()) throw InputError("every jellyfish needs the same number of recorded frames");
-  if (!obstacles.empty() && obstacles.size() != frames.size())
+    if (series.size() != school.front().size())
+      throw InputError("every jellyfish needs the same number of recorded frames");
+  if (!obstacles.empty() && obstacles.size() != school.front().size())
     throw InputError("the obstacles need one outline set per recorded frame");
-  std::unique_ptr<geometry::ObstaclePrisms> prisms;
-  if (!obstacles.empty() && !obstacles.front().empty()) {
-    try {
-      prisms = std::make_unique<geometry::ObstaclePrisms>(obstacles.front(), s.obstacle_depth_m);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(std::string("cannot draw the obstacles: ") + e.what());
-    }
+}
+
+std::unique_ptr<geometry::ObstaclePrisms> obstacle_prisms(const ObstacleFrames& obstacles, const PipelineSettings& s) {
+  if (obstacles.empty() || obstacles.front().empty()) return nullptr;
+  try {
+    return std::make_unique<geometry::ObstaclePrisms>(obstacles.front(), s.obstacle_depth_m);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("cannot draw the obstacles: ") + e.what());
   }
+}
+
+/// The marine snow's specks near the path the jellyfish took: its box grown by its own size on
+/// every side; none without tracers or when not asked for.
+std::unique_ptr<geometry::MarineSnow> marine_snow(const School& school, const std::vector<std::vector<Vec2>>& tracers,
+                                                  const PipelineSettings& s) {
   if (!tracers.empty() && tracers.size() != school.front().size())
     throw InputError("the marine snow needs one tracer set per recorded frame");
-  std::unique_ptr<geometry::MarineSnow> snow;
-  if (s.marine_snow && !tracers.empty() && !tracers.front().empty()) {
-    // The specks near the path the jellyfish took: its box grown by its own size on every side.
-    const auto [lo, hi] = path_bounds(school);
-    const Vec3 margin = hi - lo;
-    const jellyfish::SliceFrame& first = school.front().front();
-    const double axis_x = 0.5 * (first.umbrella.front().x + first.umbrella.back().x);
-    snow = std::make_unique<geometry::MarineSnow>(tracers.front(), axis_x, std::array<Vec3, 2>{lo - margin, hi + margin},
-                                                  s.snow_size_m);
-  }
-  AnimationOutputs result;
-  result.marine_snow_specks = snow ? snow->count() : 0;
+  if (!s.marine_snow || tracers.empty() || tracers.front().empty()) return nullptr;
+  const auto [lo, hi] = path_bounds(school);
+  const Vec3 margin = hi - lo;
+  const jellyfish::SliceFrame& first = school.front().front();
+  const double axis_x = 0.5 * (first.umbrella.front().x + first.umbrella.back().x);
+  return std::make_unique<geometry::MarineSnow>(tracers.front(), axis_x, std::array<Vec3, 2>{lo - margin, hi + margin},
+                                                s.snow_size_m);
+}
+
+std::vector<geometry::GeometryBuilder> geometry_builders(const School& school, const std::vector<std::uint64_t>& seeds,
+                                                         const PipelineSettings& s) {
   std::vector<geometry::GeometryBuilder> builders;
   for (std::size_t j = 0; j < school.size(); ++j) {
     geometry::GeometrySettings gs = s.geometry;
     gs.noise.seed = seeds[j];
     builders.emplace_back(gs, geometry::resolve_noise_length(gs.noise, school[j].front()));
   }
-  const bool pixels = s.png_frames || s.video;
+  return builders;
+}
+
+/// What writes each frame's pixels and meshes: the renderer, the video's file then its encoder
+/// (stopped first when the run fails: the file is removed), and folders only for what is written
+/// (an empty folder would be a surprise).
+struct FrameWriters {
+  FrameWriters(const PipelineSettings& s, const io::OutputDir& out) : pixels(s.png_frames || s.video) {
+    if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
+    if (s.video) {
+      video_file.emplace(out.temporary_for("jellyfish.mp4"));
+      video = std::make_unique<Mp4Writer>(video_file->path(), video_file->fd(), s.width_px, s.height_px, s.fps);
+    }
+    if (s.png_frames) frame_dir.emplace(out.subdirectory("frames"));
+    if (s.obj || s.ply) mesh_dir.emplace(out.subdirectory("meshes"));
+  }
+  bool pixels;
   std::unique_ptr<OffscreenRenderer> renderer;
-  if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
-  // The video's file, then its encoder (stopped first when the run fails: the file is removed).
   std::optional<io::PendingFile> video_file;
   std::unique_ptr<Mp4Writer> video;
-  if (s.video) {
-    video_file.emplace(out.temporary_for("jellyfish.mp4"));
-    video = std::make_unique<Mp4Writer>(video_file->path(), video_file->fd(), s.width_px, s.height_px, s.fps);
-  }
-  // Folders only for what is written (an empty folder would be a surprise).
-  const std::optional<io::OutputDir> frame_dir =
-      s.png_frames ? std::optional(out.subdirectory("frames")) : std::nullopt;
-  const std::optional<io::OutputDir> mesh_dir =
-      s.obj || s.ply ? std::optional(out.subdirectory("meshes")) : std::nullopt;
+  std::optional<io::OutputDir> frame_dir;
+  std::optional<io::OutputDir> mesh_dir;
+};
 
-  result.renderer = renderer ? renderer->renderer_name() : "";
-  geometry::Animation animation;
-  std::unique_ptr<FollowCamera> camera;
-  std::optional<Camera> fixed_camera;
+/// The cameras: one following the jellyfish (made on the first frame, framing the jellyfish only)
+/// and, for camera = "fixed", one over the whole path; and where the bell first was on screen.
+struct Cameras {
+  std::unique_ptr<FollowCamera> follow;
+  std::optional<Camera> fixed;
   std::optional<std::array<double, 2>> first_on_screen;
-  double geometry_s = 0.0, render_s = 0.0;
-  RgbImage image;  // reused frame to frame
-  std::vector<geometry::FrameGeometry> parts(school.size());
-  CacheRecorder caches(school.size());
-  const bool caching = s.pc2 || s.mdd || s.usda || s.glb;
-  std::size_t rendered = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k, ++rendered) {
-    if (k > 0 && core::interrupt_signal() != 0) break;  // SIGINT/SIGTERM: keep the frames so far
+};
+
+/// The frames' writer: write_animation_outputs in steps (geometry, view, files; then the
+/// animation's own files).
+class AnimationWriter {
+ public:
+  AnimationWriter(const School& school, const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
+                  const io::OutputDir& out, const ObstacleFrames& obstacles, const std::vector<std::vector<Vec2>>& tracers)
+      : school_(school),
+        s_(s),
+        out_(out),
+        obstacles_(obstacles),
+        tracers_(tracers),
+        prisms_(obstacle_prisms(obstacles, s)),
+        snow_(marine_snow(school, tracers, s)),
+        builders_(geometry_builders(school, seeds, s)),
+        writers_(s, out),
+        parts_(school.size()),
+        caches_(school.size()),
+        caching_(s.pc2 || s.mdd || s.usda || s.glb) {
+    result_.marine_snow_specks = snow_ ? snow_->count() : 0;
+    result_.renderer = writers_.renderer ? writers_.renderer->renderer_name() : "";
+  }
+
+  void add_frame(std::size_t k) {
     auto t0 = Clock::now();
-    for (std::size_t j = 0; j < school.size(); ++j) builders[j].build(school[j][k], parts[j]);
-    geometry::FrameGeometry g;
-    if (school.size() == 1) {
-      g = parts.front();
-    } else {
-      g.time_s = parts.front().time_s;
-      merge_meshes(parts, g.mesh);
+    geometry::FrameGeometry g = jellyfish_geometry(k);
+    if (!cameras_.follow) cameras_.follow = std::make_unique<FollowCamera>(s_, g.mesh);
+    if (s_.camera == "fixed" && !cameras_.fixed) cameras_.fixed = path_camera(school_, s_, g.mesh);
+    add_surroundings(k, g.mesh);
+    if (caching_) caches_.add(parts_, g.mesh);
+    geometry_s_ += seconds_since(t0);
+    if (k > 0 && !geometry::same_topology(animation_.frames.front(), g.mesh))
+      throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
+    const Camera view = next_view();
+    if (writers_.pixels) render_frame(k, g.mesh, view);
+    write_frame_meshes(k, g.mesh);
+    result_.vertices = g.mesh.vertex_count();
+    result_.triangles = g.mesh.triangle_count();
+    animation_.times_s.push_back(school_.front()[k].time_s);
+    if (k == 0) animation_.frames.push_back(std::move(g.mesh));  // the topology every frame must keep
+  }
+
+  AnimationOutputs finish(std::size_t rendered) {
+    if (writers_.video) {
+      writers_.video->finish();
+      writers_.video_file->commit();
+      result_.files.push_back("jellyfish.mp4");
     }
-    if (!camera) camera = std::make_unique<FollowCamera>(s, g.mesh);  // frames the jellyfish only
-    if (s.camera == "fixed" && !fixed_camera) fixed_camera = path_camera(school, s, g.mesh);
-    if (prisms) {
+    if (caching_) caches_.write(s_, animation_.times_s, out_, result_);
+    if (s_.glb) write_glb();
+    result_.frames = rendered;
+    const auto per_frame = static_cast<double>(std::max<std::size_t>(rendered, 1));
+    result_.geometry_seconds_per_frame = geometry_s_ / per_frame;
+    result_.render_seconds_per_frame = writers_.pixels ? render_s_ / per_frame : 0.0;
+    return result_;
+  }
+
+ private:
+  /// Frame k's jellyfish (several merged into one mesh).
+  geometry::FrameGeometry jellyfish_geometry(std::size_t k) {
+    for (std::size_t j = 0; j < school_.size(); ++j) builders_[j].build(school_[j][k], parts_[j]);
+    if (school_.size() == 1) return parts_.front();
+    geometry::FrameGeometry g;
+    g.time_s = parts_.front().time_s;
+    merge_meshes(parts_, g.mesh);
+    return g;
+  }
+
+  /// The obstacles and the marine snow around the jellyfish at frame k.
+  void add_surroundings(std::size_t k, geometry::Mesh& mesh) {
+    if (prisms_) {
       try {
-        prisms->append(obstacles[k], g.mesh);
+        prisms_->append(obstacles_[k], mesh);
       } catch (const std::invalid_argument& e) {
         throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
       }
     }
-    if (snow) snow->append(tracers[k], g.mesh);
-    if (caching) caches.add(parts, g.mesh);
-    geometry_s += seconds_since(t0);
-    if (k > 0 && !geometry::same_topology(animation.frames.front(), g.mesh))
-      throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
+    if (snow_) snow_->append(tracers_[k], mesh);
+  }
+
+  /// The camera of this frame (the follow camera moves every frame, also when the fixed one is
+  /// used) and how far the bell has moved on screen since the first frame.
+  Camera next_view() {
     Vec3 centre{};
-    for (const auto& part : parts) centre = centre + (1.0 / static_cast<double>(parts.size())) * umbrella_centre(part);
-    const Camera followed = camera->next(centre);
-    const Camera view = fixed_camera ? *fixed_camera : followed;
+    for (const auto& part : parts_) centre = centre + (1.0 / static_cast<double>(parts_.size())) * umbrella_centre(part);
+    const Camera followed = cameras_.follow->next(centre);
+    const Camera view = cameras_.fixed ? *cameras_.fixed : followed;
     const std::array<double, 2> on_screen = screen_position(view, centre);
-    if (!first_on_screen) first_on_screen = on_screen;
-    result.bell_screen_travel = std::hypot(on_screen[0] - (*first_on_screen)[0], on_screen[1] - (*first_on_screen)[1]);
-    if (pixels) {
-      t0 = Clock::now();
-      renderer->render(g.mesh, view, s.style, image);
-      render_s += seconds_since(t0);
-      if (s.png_frames) {
-        const std::string name = frame_name(k, "png");
-        frame_dir->write_text(name, png_bytes(image));
-        result.files.push_back("frames/" + name);
-      }
-      if (video) video->add(image);
-    }
-    const std::string comment = "jellysim frame " + std::to_string(k) + " t = " + io::format_double(frames[k].time_s) + " s";
-    if (s.obj) {
-      mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(g.mesh, comment));
-      result.files.push_back("meshes/" + frame_name(k, "obj"));
-    }
-    if (s.ply) {
-      mesh_dir->write_text(frame_name(k, "ply"), io::ply_bytes(g.mesh, comment));
-      result.files.push_back("meshes/" + frame_name(k, "ply"));
-    }
-    result.vertices = g.mesh.vertex_count();
-    result.triangles = g.mesh.triangle_count();
-    animation.times_s.push_back(frames[k].time_s);
-    if (k == 0) animation.frames.push_back(std::move(g.mesh));  // the topology every frame must keep
-    if (progress) progress(k + 1, frames.size());
+    if (!cameras_.first_on_screen) cameras_.first_on_screen = on_screen;
+    const auto& first = *cameras_.first_on_screen;
+    result_.bell_screen_travel = std::hypot(on_screen[0] - first[0], on_screen[1] - first[1]);
+    return view;
   }
-  if (video) {
-    video->finish();
-    video_file->commit();
-    result.files.push_back("jellyfish.mp4");
+
+  void render_frame(std::size_t k, const geometry::Mesh& mesh, const Camera& view) {
+    const auto t0 = Clock::now();
+    writers_.renderer->render(mesh, view, s_.style, image_);
+    render_s_ += seconds_since(t0);
+    if (s_.png_frames) {
+      const std::string name = frame_name(k, "png");
+      writers_.frame_dir->write_text(name, png_bytes(image_));
+      result_.files.push_back("frames/" + name);
+    }
+    if (writers_.video) writers_.video->add(image_);
   }
-  if (caching) caches.write(s, animation.times_s, out, result);
-  if (s.glb) {
-    const std::string glb = io::glb_bytes(caches.glb_bodies(), animation.times_s, glb_materials(s), s.glb_every, s.fps);
-    out.write_text("jellyfish.glb", glb);
-    out.write_text("blender_import.py", kBlenderImport);
-    result.files.insert(result.files.end(), {"jellyfish.glb", "blender_import.py"});
-    result.glb_bytes = glb.size();
-    if (s.viewer) write_viewer(s, glb, out, result);
+
+  void write_frame_meshes(std::size_t k, const geometry::Mesh& mesh) {
+    const std::string comment =
+        "jellysim frame " + std::to_string(k) + " t = " + io::format_double(school_.front()[k].time_s) + " s";
+    if (s_.obj) {
+      writers_.mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(mesh, comment));
+      result_.files.push_back("meshes/" + frame_name(k, "obj"));
+    }
+    if (s_.ply) {
+      writers_.mesh_dir->write_text(frame_name(k, "ply"), io::ply_bytes(mesh, comment));
+      result_.files.push_back("meshes/" + frame_name(k, "ply"));
+    }
   }
-  result.frames = rendered;
-  result.geometry_seconds_per_frame = geometry_s / static_cast<double>(std::max<std::size_t>(rendered, 1));
-  result.render_seconds_per_frame = pixels ? render_s / static_cast<double>(std::max<std::size_t>(rendered, 1)) : 0.0;
-  return result;
+
+  void write_glb() {
+    const std::string glb =
+        io::glb_bytes(caches_.glb_bodies(), animation_.times_s, glb_materials(s_), s_.glb_every, s_.fps);
+    out_.write_text("jellyfish.glb", glb);
+    out_.write_text("blender_import.py", kBlenderImport);
+    result_.files.insert(result_.files.end(), {"jellyfish.glb", "blender_import.py"});
+    result_.glb_bytes = glb.size();
+    if (s_.viewer) write_viewer(s_, glb, out_, result_);
+  }
+
+  const School& school_;
+  const PipelineSettings& s_;
+  const io::OutputDir& out_;
+  const ObstacleFrames& obstacles_;
+  const std::vector<std::vector<Vec2>>& tracers_;
+  std::unique_ptr<geometry::ObstaclePrisms> prisms_;
+  std::unique_ptr<geometry::MarineSnow> snow_;
+  std::vector<geometry::GeometryBuilder> builders_;
+  FrameWriters writers_;
+  AnimationOutputs result_;
+  geometry::Animation animation_;
+  Cameras cameras_;
+  double geometry_s_ = 0.0, render_s_ = 0.0;
+  RgbImage image_;  // reused frame to frame
+  std::vector<geometry::FrameGeometry> parts_;
+  CacheRecorder caches_;
+  bool caching_;
+};
+
+}  // namespace
+
+AnimationOutputs write_animation_outputs(const School& school, const std::vector<std::uint64_t>& seeds,
+                                         const PipelineSettings& s, const io::OutputDir& out,
+                                         const FrameProgress& progress, const ObstacleFrames& obstacles,
+                                         const std::vector<std::vector<Vec2>>& tracers) {
+  check_recorded_frames(school, seeds, obstacles);
+  AnimationWriter writer(school, seeds, s, out, obstacles, tracers);
+  const std::size_t frames = school.front().size();
+  std::size_t rendered = 0;
+  for (std::size_t k = 0; k < frames; ++k, ++rendered) {
+    if (k > 0 && core::interrupt_signal() != 0) break;  // SIGINT/SIGTERM: keep the frames so far
+    writer.add_frame(k);
+    if (progress) progress(k + 1, frames);
+  }
+  return writer.finish(rendered);
 }
 
 // ---- Figure 8.19 ------------------------------------------------------------------------------

@@ -105,9 +105,10 @@ TEST(AxisymmetricCoupling, SemiImplicitStepsWithAndWithoutTheMobility) {
 
 // The ring mobility from its table (one axisymmetric projection per source column, translation
 // invariance along z) against R built column by column from the fluid's own response, with the FFT
-// pressure solver: equal to round-off (measured 3e-16 of the largest entry) for rings on the axis,
-// near it, in the open, at the mantle and, with walls along z, beside the south wall; on a cylinder
-// periodic along z, on one with free-slip ends and a no-slip mantle, and one with an outflow end.
+// pressure solver: equal to round-off (measured 3e-16 of the largest entry; allowed 3e-15) for rings
+// on the axis, near it, in the open, at the mantle and, with walls along z, beside the south wall; on
+// a cylinder periodic along z, on one with free-slip ends and a no-slip mantle, and one with an
+// outflow end.
 TEST(AxisymmetricCoupling, TheRingMobilityTableIsTheFluidsResponse) {
   struct Case {
     fluid::BoundaryType east, south, north;
@@ -137,7 +138,7 @@ TEST(AxisymmetricCoupling, TheRingMobilityTableIsTheFluidsResponse) {
     std::printf("ring mobility: largest entry %.3g, difference %.3g, %d projections\n", largest, error,
                 mobility.columns_built());
     EXPECT_GT(largest, 0.0);
-    EXPECT_LT(error, 1e-12 * largest);
+    EXPECT_LT(error, 3e-15 * largest);
   }
 }
 

@@ -170,7 +170,8 @@ std::pair<double, double> axial_momentum(const fluid::FlowState& half) {
 // In a cylinder periodic along the axis nothing but the bell exchanges axial momentum with the
 // water, and the bell's forces are internal: the water's axial momentum stays zero to round-off
 // while the bell strokes (a point on the axis feels each ring element once: the coupling spreads
-// half the force on the axis points of the whole slice). Measured 3e-15 of Σ|v r| after 0.4 s;
+// half the force on the axis points of the whole slice). Measured 3e-15 of Σ|v r| after 0.4 s
+// (allowed 3e-14);
 // with the whole force on the axis points instead, this test fails. The Eulerian solver, whose
 // convection conserves momentum (a semi-Lagrangian step does not, by construction).
 TEST(RingJellyfish, TheBellsForcesAreInternal) {
@@ -182,7 +183,7 @@ TEST(RingJellyfish, TheBellsForcesAreInternal) {
   const auto [m, scale] = axial_momentum(sim.world().fluid().state());
   std::printf("axial momentum %.3g of %.3g\n", m, scale);
   EXPECT_GT(scale, 0.0);
-  EXPECT_LT(std::abs(m), 1e-12 * scale);
+  EXPECT_LT(std::abs(m), 3e-14 * scale);
 }
 
 // One cycle of the built-in bell in axisymmetric water on the preview grid: the symmetric stroke
