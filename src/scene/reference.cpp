@@ -20,33 +20,10 @@ std::string without_empty_top_level(std::string page) {
   return page;
 }
 
-}  // namespace
 
-std::string parameters_reference() {
-  std::string page =
-      "# Scene parameters\n\n"
-      "Generated from the parameter tables in `src/scene/` by `jellysim scenes --reference > docs/parameters.md`;\n"
-      "the test `SceneParameters.ReferencePageIsCurrent` fails when this page is stale. The same tables\n"
-      "give the built-in scene files (`jellysim scenes jellyfish`), check scene files and `--set`\n"
-      "overrides (type and range; errors name the field and the allowed values, exit code 2) and set\n"
-      "the ranges of the viewer's live parameters. Units are SI; an empty unit is a ratio or a name.\n"
-      "Ranges: `(` and `)` exclude the bound, `[` and `]` include it.\n\n"
-      "## Jellyfish scene (`jellysim simulate`, `run`, `view`, `sweep`; scenes/jellyfish.toml)\n\n"
-      "A scene file lists only what it changes; everything else keeps these defaults. The jellyfish\n"
-      "experiments (`jellysim experiment NAME`) start from this scene and add fields of their own\n"
-      "(`jellysim scenes NAME` prints them). [[objects]] tables follow this section (docs/scenes.md).\n";
-  page += jellyfish_scene().reference_markdown();
-  page +=
-      "\n## [[objects]] of the jellyfish scene (docs/scenes.md)\n\n"
-      "More things in the tank, one [[objects]] table each, of the `type` given; an object has only its\n"
-      "type's fields (another is refused, naming the allowed). A field without a default is required,\n"
-      "or optional without effect when absent, as its description says.\n";
-  page += objects_reference_markdown();
-  page +=
-      "\n## 3D rendering (`jellysim run`, `experiment stages`; the [render] section)\n\n"
-      "The pipeline of §7.2–7.4: image and mesh sizes, camera, style, which files are written, and the\n"
-      "noise of §7.3. The main job starts from these; `experiment stages` sets obj and ply to true.\n";
-  page += render_parameters().reference_markdown();
+/// The experiments' own sections and the viewer's live parameters (parameters_reference's second half).
+std::string experiments_reference() {
+  std::string page;
   page +=
       "\n## Lid-driven cavity (`jellysim experiment driven-cavity`; experiments/driven-cavity.toml)\n";
   page += driven_cavity_scene().reference_markdown();
@@ -92,6 +69,37 @@ std::string parameters_reference() {
       "Each is a parameter above (or one of the viewer's own controls) and allows the same values; the\n"
       "slider offers the part of that range shown here. docs/viewer.md describes the viewer.\n\n";
   page += live_parameters_markdown();
+  return page;
+}
+
+}  // namespace
+
+std::string parameters_reference() {
+  std::string page =
+      "# Scene parameters\n\n"
+      "Generated from the parameter tables in `src/scene/` by `jellysim scenes --reference > docs/parameters.md`;\n"
+      "the test `SceneParameters.ReferencePageIsCurrent` fails when this page is stale. The same tables\n"
+      "give the built-in scene files (`jellysim scenes jellyfish`), check scene files and `--set`\n"
+      "overrides (type and range; errors name the field and the allowed values, exit code 2) and set\n"
+      "the ranges of the viewer's live parameters. Units are SI; an empty unit is a ratio or a name.\n"
+      "Ranges: `(` and `)` exclude the bound, `[` and `]` include it.\n\n"
+      "## Jellyfish scene (`jellysim simulate`, `run`, `view`, `sweep`; scenes/jellyfish.toml)\n\n"
+      "A scene file lists only what it changes; everything else keeps these defaults. The jellyfish\n"
+      "experiments (`jellysim experiment NAME`) start from this scene and add fields of their own\n"
+      "(`jellysim scenes NAME` prints them). [[objects]] tables follow this section (docs/scenes.md).\n";
+  page += jellyfish_scene().reference_markdown();
+  page +=
+      "\n## [[objects]] of the jellyfish scene (docs/scenes.md)\n\n"
+      "More things in the tank, one [[objects]] table each, of the `type` given; an object has only its\n"
+      "type's fields (another is refused, naming the allowed). A field without a default is required,\n"
+      "or optional without effect when absent, as its description says.\n";
+  page += objects_reference_markdown();
+  page +=
+      "\n## 3D rendering (`jellysim run`, `experiment stages`; the [render] section)\n\n"
+      "The pipeline of §7.2–7.4: image and mesh sizes, camera, style, which files are written, and the\n"
+      "noise of §7.3. The main job starts from these; `experiment stages` sets obj and ply to true.\n";
+  page += render_parameters().reference_markdown();
+  page += experiments_reference();
   return page;
 }
 
