@@ -191,9 +191,11 @@ std::function<Outcome(const io::OutputDir&)> prepare_swinging_bar(const Context&
 }  // namespace
 
 Experiment swinging_bar_experiment() {
-  return sph_common::make_bar_experiment("swinging-bar",
-                                         "Thesis Figure 8.1: an elastic strand swinging from one pinned corner",
-                                         "scenes/swinging-bar.toml", prepare_swinging_bar);
+  Experiment e = sph_common::make_bar_experiment("swinging-bar",
+                                                 "Thesis Figure 8.1: an elastic strand swinging from one pinned corner",
+                                                 "scenes/swinging-bar.toml", prepare_swinging_bar);
+  e.shorthands.clear();  // no particles: no run.threads, so no --threads
+  return e;
 }
 
 }  // namespace jellysim::experiments
