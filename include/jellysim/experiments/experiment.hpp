@@ -57,7 +57,7 @@ struct ShorthandOption {
   std::string name;             ///< without the "--"
   std::string key;              ///< the configuration key it sets
   std::string help;             ///< the command line's help text
-  std::string type_name{};      ///< the help's placeholder (empty: the parser's own)
+  std::string type_name{};      ///< the value's name in the help, e.g. N (empty: the parser's own)
   bool quoted = false;          ///< the value is text, set as a TOML string (e.g. --grids 24x32,48x64)
   int min_count = 0, max_count = 0;  ///< max_count > 0: an integer in [min_count, max_count]
 };
