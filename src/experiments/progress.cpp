@@ -33,7 +33,9 @@ bool ProgressTracker::admit(double fraction, nlohmann::ordered_json& line) {
 }
 
 nlohmann::ordered_json ProgressTracker::simulation(double t, double duration, std::int64_t steps) {
-  const double fraction = duration > 0.0 && std::isfinite(t) ? std::clamp(t / duration, 0.0, 1.0) : 1.0;
+  // A frame time within a few ulps of the duration counts as the end (its line is never throttled).
+  double fraction = duration > 0.0 && std::isfinite(t) ? std::clamp(t / duration, 0.0, 1.0) : 1.0;
+  if (fraction > 1.0 - 1e-9) fraction = 1.0;
   nlohmann::ordered_json line = nlohmann::ordered_json::object();
   if (!admit(fraction, line)) return nullptr;
   nlohmann::ordered_json ordered{{"stage", stage_}, {"time", t}, {"duration", duration}, {"fraction", fraction},
