@@ -123,7 +123,7 @@ scene.collection.objects.link(cam)
 cam.location = centre + Vector((0.6, -2.2, 0.5)).normalized() * size * 3.2
 cam.rotation_euler = (centre - cam.location).to_track_quat("-Z", "Y").to_euler()
 scene.camera = cam
-print(f"bell centre {tuple(centre)}, size {size:.4f} m, camera {tuple(cam.location)}")
+
 light = bpy.data.objects.new("jellysim_test_light", bpy.data.lights.new("jellysim_test_light", "SUN"))
 light.rotation_euler = (math.radians(40), math.radians(20), 0)
 light.data.energy = 5.0
