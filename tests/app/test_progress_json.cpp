@@ -5,15 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
 
 #include "../cli_runner.hpp"
 #include "jellysim/experiments/progress.hpp"
@@ -29,15 +25,7 @@ const std::string kTiny = " --set tank.cells=[48,64] --set output.pictures=false
 
 /// Runs `jellysim ARGS --progress json` and keeps its stderr only (stdout discarded).
 cli::CliResult run_for_stderr(const std::string& args) {
-  const std::string cmd = std::string(JELLYSIM_CLI_PATH) + " " + args + " --progress json 2>&1 >/dev/null";
-  cli::CliResult r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe) != nullptr) r.output += buf.data();
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return cli::run_command(std::string(JELLYSIM_CLI_PATH) + " " + args + " --progress json 2>&1 >/dev/null");
 }
 
 /// Every stderr line of `jellysim ARGS --progress json` but the human-readable error must be a JSON object.
