@@ -91,6 +91,15 @@ check(len([o for o in bpy.data.objects if o.name.startswith("jellyfish_1")]) == 
 check(len([m for m in bpy.data.materials if m.name.startswith("jellysim_bell")]) == 1, "one bell material")
 check(bpy.data.objects["jellyfish_1"].modifiers[0].filepath.find("take_002") >= 0, "the new take's cache")
 
+# A scene file with obstacles (its rock outline is relative to the working directory: the source
+# tree's root, where addon_test.sh starts Blender): their own cached mesh and stone material.
+s.scene_source, s.scene_file = "FILE", os.path.abspath("scenes/obstacles.toml")
+check(bpy.ops.jellysim.simulate() == {"FINISHED"}, "Simulate scenes/obstacles.toml")
+obstacles = bpy.data.objects.get("obstacles")
+check(obstacles is not None and obstacles.modifiers[0].type == "MESH_CACHE"
+      and obstacles.data.materials[0].name == "jellysim_obstacles", "obstacles with their Mesh Cache and material")
+s.scene_source = "BUILTIN"
+
 # Cancel: SIGINT stops the CLI at a step boundary; it reports "interrupted" and what it wrote imports.
 from jellysim_blender import cli, importer  # noqa: E402
 params = s.params()
