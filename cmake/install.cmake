@@ -38,7 +38,8 @@ endif()
 
 # The installed tree works: examples/ configured and built against it through find_package(jellysim),
 # one example run, and the installed Python module imported (tests/install/installed_tree_test.sh).
-if(BUILD_TESTING)
+# Not in the sanitizer builds: their link flags are not part of the exported targets.
+if(BUILD_TESTING AND NOT JELLYSIM_SANITIZE AND NOT JELLYSIM_TSAN)
   add_test(NAME Install.ExamplesAgainstInstalledTree
            COMMAND bash ${PROJECT_SOURCE_DIR}/tests/install/installed_tree_test.sh ${CMAKE_BINARY_DIR}
                    ${PROJECT_SOURCE_DIR}/examples ${CMAKE_COMMAND} ${Python3_EXECUTABLE})
