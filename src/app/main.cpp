@@ -209,9 +209,10 @@ std::function<void(std::size_t, std::size_t)> make_render_progress(const std::st
   };
 }
 
-/// With `--progress json`, the closing status line; returns `exit_code`.
+/// With `--progress json`, the closing status line unless one was written; returns `exit_code`.
 int report_status(const std::string& mode, int exit_code, const std::string& out, const std::string& message) {
-  if (mode == "json") js::experiments::write_progress_line(js::experiments::progress_status(exit_code, out, message));
+  if (mode == "json" && !js::experiments::status_line_written())
+    js::experiments::write_progress_line(js::experiments::progress_status(exit_code, out, message));
   return exit_code;
 }
 
@@ -716,7 +717,9 @@ int run_parsed(const std::vector<std::pair<CLI::App*, std::function<int()>>>& ru
       if (const CLI::Option* d = command->get_option_no_throw("--out"); d != nullptr && d->count() > 0)
         out = d->as<std::string>();
       if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
-      return run();
+      const int code = run();
+      // A command that writes no status line of its own (a new one) still ends --progress json with one.
+      return report_status(mode, code, out, command->get_name() + (code == 0 ? ": done" : ": exit " + std::to_string(code)));
     }
     return kExitBadInput;  // CLI11 requires one command: not reached
   } catch (const js::InputError& e) {

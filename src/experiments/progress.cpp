@@ -1,6 +1,7 @@
 #include "jellysim/experiments/progress.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -59,10 +60,17 @@ nlohmann::ordered_json progress_status(int exit_code, const std::string& out, co
   return {{"status", status}, {"exit_code", exit_code}, {"out", out}, {"message", message}};
 }
 
+namespace {
+std::atomic<bool> g_status_written{false};  // one process, one command: one status line
+}  // namespace
+
+bool status_line_written() { return g_status_written.load(); }
+
 void write_progress_line(const nlohmann::ordered_json& line) {
   static std::mutex lock;
   const std::string text = line.dump() + "\n";
   const std::lock_guard<std::mutex> guard(lock);
+  if (line.contains("status")) g_status_written = true;
   std::fwrite(text.data(), 1, text.size(), stderr);
   std::fflush(stderr);
 }

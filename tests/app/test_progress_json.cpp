@@ -62,6 +62,9 @@ void expect_well_formed(const std::vector<json>& lines, const std::string& stage
     }
   }
   EXPECT_GE(stage_lines, 1) << "no '" << stage << "' line";
+  int status_lines = 0;
+  for (const json& l : lines) status_lines += l.contains("status") ? 1 : 0;
+  EXPECT_EQ(status_lines, 1);
   const json& last = lines.back();
   EXPECT_EQ(last["status"], status) << last;
   EXPECT_EQ(last["exit_code"], code) << last;

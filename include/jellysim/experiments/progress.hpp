@@ -44,4 +44,7 @@ nlohmann::ordered_json progress_status(int exit_code, const std::string& out, co
 /// batch's worker threads report at once).
 void write_progress_line(const nlohmann::ordered_json& line);
 
+/// Whether write_progress_line wrote a status line in this process (the CLI then writes no other).
+bool status_line_written();
+
 }  // namespace jellysim::experiments
