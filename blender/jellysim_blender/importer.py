@@ -202,7 +202,8 @@ def set_scene_timing(scene, fps, frames):
 
 def import_run(out_dir, context, colour=(0.78, 0.9, 1.0)):
     """Replaces the collection "Jellysim" with the run in `out_dir`; returns the collection."""
-    summary = json.load(open(os.path.join(out_dir, "summary.json")))
+    with open(os.path.join(out_dir, "summary.json")) as f:
+        summary = json.load(f)
     glb = os.path.join(out_dir, "jellyfish.glb")
     fps, frames = glb_timing(read_glb_json(glb)[0]) if os.path.exists(glb) else (30.0, 1)
     remove_previous()
