@@ -7,6 +7,8 @@
 #include <atomic>
 #include <stdexcept>
 
+#include "jellysim/experiments/progress.hpp"
+
 #include "arrays.hpp"
 #include "scene_api.hpp"
 #include "simulation.hpp"
@@ -73,15 +75,29 @@ py::dict metrics_dict(const std::vector<jellysim::jellyfish::MetricsRow>& rows) 
   return d;
 }
 
-/// advance() without the GIL, taking it back at each frame to see whether a signal (Ctrl-C) came.
-void advance(PySimulation& self, double seconds) {
-  const auto signalled = [] {
-    py::gil_scoped_acquire held;
-    return PyErr_CheckSignals() != 0;
-  };
+/// advance() without the GIL, taking it back at each frame to see whether a signal (Ctrl-C) came and
+/// to call `progress` (optional) with `--progress json`'s object as a dict, at most five a second
+/// plus the last. An exception the callback raises stops the run at that frame and propagates.
+void advance(PySimulation& self, double seconds, const py::object& progress) {
+  jellysim::experiments::ProgressTracker tracker("simulate");
   bool done = true;
-  self.step_released([&](jp::Simulation& s) { done = s.advance(seconds, signalled); });
-  if (!done) throw py::error_already_set();  // the signal handler's exception (KeyboardInterrupt)
+  self.step_released([&](jp::Simulation& s) {
+    done = s.advance(seconds, [&] {
+      py::gil_scoped_acquire held;
+      if (PyErr_CheckSignals() != 0) return true;
+      if (progress.is_none()) return false;
+      const nlohmann::ordered_json line = tracker.simulation(s.time_s(), s.target_s(), s.steps());
+      if (line.is_null()) return false;
+      try {
+        progress(jp::json_dict(line));
+      } catch (py::error_already_set& e) {
+        e.restore();  // raised again below, as a signal's exception is
+        return true;
+      }
+      return false;
+    });
+  });
+  if (!done) throw py::error_already_set();  // the signal handler's or the callback's exception
 }
 
 /// The flow on the MAC grid: read-only views of u, v, pressure and their sample coordinates.
@@ -137,9 +153,10 @@ void bind_simulation(py::module_& m) {
       .def(py::init<const jp::Scene&>(), py::arg("scene"))
       .def("step", [](PySimulation& s) { s.step_released([](jp::Simulation& x) { x.step(); }); },
            "One coupled step toward the next frame time (GIL released).")
-      .def("advance", &advance, py::arg("seconds"),
+      .def("advance", &advance, py::arg("seconds"), py::arg("progress") = py::none(),
            "Steps to the frame nearest the duration asked for, as `simulate --duration` (GIL released; Ctrl-C stops "
-           "it at a frame).")
+           "it at a frame). progress(dict) (optional) hears `--progress json`'s objects: stage, time, duration, "
+           "fraction, steps, eta_seconds; an exception it raises stops the run there.")
       .def_property_readonly("time", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.time_s(); }); }, "s")
       .def_property_readonly("steps", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.steps(); }); })
       .def_property_readonly("frame_count", [](PySimulation& s) { return s.use([](jp::Simulation& x) { return x.frames().size(); }); })
@@ -161,7 +178,8 @@ PYBIND11_MODULE(jellysim, m) {
   bind_scene(m);
   bind_simulation(m);
   m.def("run_experiment", &jp::run_experiment, py::arg("name"), py::kw_only(), py::arg("out") = py::none(),
-        py::arg("scene") = py::none(), py::arg("overrides") = py::none(),
+        py::arg("scene") = py::none(), py::arg("overrides") = py::none(), py::arg("progress") = py::none(),
         "Runs an experiment (or `simulate`, `run`) into out (default out/NAME) and returns summary.json as a dict; "
-        "keyword overrides use __ for . (jellyfish__frequency=0.9).");
+        "keyword overrides use __ for . (jellyfish__frequency=0.9). progress(dict) (optional) hears `--progress "
+        "json`'s objects (stages simulate, and render for `run`); an exception it raises is raised after the run.");
 }

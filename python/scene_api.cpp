@@ -4,12 +4,17 @@
 #include <pybind11/eval.h>
 
 #include <algorithm>
+#include <csignal>
+#include <functional>
+#include <optional>
 #include <cctype>
 #include <fstream>
 #include <sstream>
 
 #include "jellysim/core/errors.hpp"
+#include "jellysim/core/interrupt.hpp"
 #include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/progress.hpp"
 #include "jellysim/scene/resolve.hpp"
 
 namespace jellysim::python {
@@ -185,14 +190,54 @@ Scene load_scene(const py::object& source, const py::object& overrides) {
   return resolve_scene(&file, path, sets);
 }
 
+py::object json_dict(const nlohmann::ordered_json& value) {
+  return py::module_::import("json").attr("loads")(value.dump());
+}
+
+namespace {
+
+/// run_experiment's progress callback, called from the run's threads: each report takes the GIL;
+/// the first exception the callback raises is kept and asks the run to stop.
+struct PythonProgress {
+  explicit PythonProgress(py::object f) : callback(std::move(f)) {}
+  py::object callback;
+  experiments::ProgressTracker simulate{"simulate"}, render{"render"};
+  std::optional<py::error_already_set> error;
+
+  void report(const std::function<nlohmann::ordered_json()>& line_of) {
+    py::gil_scoped_acquire held;
+    if (callback.is_none() || error) return;
+    const nlohmann::ordered_json line = line_of();
+    if (line.is_null()) return;
+    try {
+      callback(json_dict(line));
+    } catch (py::error_already_set& e) {
+      error = std::move(e);
+      core::request_interrupt(SIGINT);  // the run stops at its next step boundary, keeping its files
+    }
+  }
+};
+
+}  // namespace
+
 py::dict run_experiment(const std::string& name, const py::object& out, const py::object& scene,
-                        const py::object& overrides, const py::kwargs& kwargs) {
+                        const py::object& overrides, const py::object& progress, const py::kwargs& kwargs) {
   const experiments::Experiment& e = experiment_named(name);
   scene::ConfigSources sources{{}, scene.is_none() ? "" : path_text(scene), "", false,
                                override_assignments(overrides, kwargs)};
   if (!scene.is_none()) sources.scene_file = io::Config::load(sources.scene_name);
-  const experiments::Context ctx{
+  PythonProgress reports(progress);
+  PythonProgress* r = &reports;  // the callbacks hold a pointer: no Python object is copied without the GIL
+  experiments::Context ctx{
       scene::resolve_config(experiments::default_config(e), sources, "experiment '" + e.name + "'"), {}};
+  if (!progress.is_none()) {
+    ctx.progress = [r](double t, double duration, std::int64_t steps) {
+      r->report([&] { return r->simulate.simulation(t, duration, steps); });
+    };
+    ctx.render_progress = [r](std::size_t done, std::size_t total) {
+      r->report([&] { return r->render.count(done, total, "frames"); });
+    };
+  }
   auto run = e.prepare(ctx);  // validates everything before anything is written
   const io::OutputDir dir = io::OutputDir::for_run(out.is_none() ? "out/" + e.name : path_text(out), e.name);
   experiments::Outcome outcome;
@@ -200,6 +245,11 @@ py::dict run_experiment(const std::string& name, const py::object& out, const py
     py::gil_scoped_release released;
     outcome = experiments::run_guarded(e, ctx, run, dir);
     dir.finish_manifest();
+  }
+  if (reports.error) {
+    core::clear_interrupt();
+    reports.error->restore();
+    throw py::error_already_set();
   }
   py::dict summary = read_summary(dir.path());
   if (!outcome.failure.empty()) {

@@ -3,6 +3,8 @@
 // configuration resolution (defaults + scene file or TOML text + key=value overrides) for Python.
 #include <pybind11/pybind11.h>
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -27,8 +29,13 @@ Scene load_scene(const py::object& source, const py::object& overrides);
 
 /// jellysim.run_experiment: runs experiment `name` (or `simulate`, `run`) into `out` as
 /// `jellysim experiment`/`simulate` do, without the GIL; returns summary.json as a dict. Raises
-/// RunError (its .summary the dict) when the run failed.
+/// RunError (its .summary the dict) when the run failed. `progress` (None or a callable) hears
+/// `--progress json`'s objects as dicts; an exception it raises stops the run at its next step
+/// boundary (summary.json's status "interrupted") and is raised when the run has stopped.
 py::dict run_experiment(const std::string& name, const py::object& out, const py::object& scene,
-                        const py::object& overrides, const py::kwargs& kwargs);
+                        const py::object& overrides, const py::object& progress, const py::kwargs& kwargs);
+
+/// A JSON object as a Python dict (json.loads of its text).
+py::object json_dict(const nlohmann::ordered_json& value);
 
 }  // namespace jellysim::python

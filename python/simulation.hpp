@@ -4,6 +4,7 @@
 // `jellysim simulate --duration seconds` and records the same frames (the rows of metrics.csv and
 // slices.csv). Plain C++: the pybind11 layer (module.cpp) only converts.
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -49,6 +50,11 @@ class Simulation {
 
   double time_s() const { return sim_->time_s(); }
   long steps() const { return sim_->steps(); }
+  /// The time of the frame the advance() calls so far end on (their progress reports' duration).
+  double target_s() const {
+    const double interval = scene_.settings.frame_interval_s;
+    return static_cast<double>(std::llround(requested_s_ / interval)) * interval;
+  }
   const Scene& scene() const { return scene_; }
   const jellyfish::SwimSimulation& swim() const { return *sim_; }
   /// Jellyfish j's markers as slices.csv lists them: the umbrella (left tip, apex, right tip),

@@ -28,9 +28,8 @@ struct CliResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs the jellysim program with the given arguments (a shell command line).
-inline CliResult run_jellysim(const std::string& args) {
-  const std::string cmd = std::string(JELLYSIM_CLI_PATH) + " " + args + " 2>&1";
+/// Runs a shell command line; its output is what it writes to stdout.
+inline CliResult run_command(const std::string& cmd) {
   CliResult r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (pipe == nullptr) return r;
@@ -39,6 +38,11 @@ inline CliResult run_jellysim(const std::string& args) {
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Runs the jellysim program with the given arguments (a shell command line).
+inline CliResult run_jellysim(const std::string& args) {
+  return run_command(std::string(JELLYSIM_CLI_PATH) + " " + args + " 2>&1");
 }
 
 inline std::string read_text_file(const std::filesystem::path& p) {

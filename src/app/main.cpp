@@ -4,6 +4,7 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/experiments/embedded_data.hpp"
+#include "jellysim/experiments/progress.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/interrupt.hpp"
 #include "jellysim/core/memory.hpp"
@@ -29,6 +30,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <fstream>
 #include <sstream>
 #include <iostream>
@@ -48,6 +50,7 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::optional<double> duration;
   bool quiet = false;
+  std::string progress = "bar";  ///< --progress: bar, json or none (progress_mode())
   /// Options that set a key some experiments have (e.g. driven-cavity): --solver, --re, --grid,
   /// --steady-tolerance: (option, key, value).
   std::vector<js::scene::Shorthand> shorthands;
@@ -94,6 +97,20 @@ void add_memory_limit_option(CLI::App& cmd) {
           "SIZE", "memory size"));
 }
 
+/// --progress bar|json|none, of every long command (README, "Using it").
+void add_progress_option(CLI::App& cmd, std::string& mode) {
+  cmd.add_option("--progress", mode,
+                 "Progress: bar (a line redrawn on a terminal; the default), json (one JSON object per line on stderr: "
+                 "stage, time, duration, fraction, steps, eta_seconds, at most 5 a second, then a status line) or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"bar", "json", "none"}));
+}
+
+/// The progress display asked for: --quiet turns the default bar off (an explicit json stays).
+std::string progress_mode(const std::string& progress, bool quiet) {
+  return quiet && progress == "bar" ? "none" : progress;
+}
+
 /// `set_example` is a working example of --set for this command (the test
 /// Cli.EverySetExampleInTheHelpRuns runs each one).
 void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_out, const std::string& set_example) {
@@ -117,6 +134,7 @@ void add_run_options(CLI::App& cmd, RunOptions& o, const std::string& default_ou
           [](std::string& value) -> std::string { return value.empty() ? "the duration is empty" : std::string(); },
           "S", "duration"));
   cmd.add_flag("--quiet", o.quiet, "No progress display");
+  add_progress_option(cmd, o.progress);
   add_memory_limit_option(cmd);
 }
 
@@ -160,9 +178,49 @@ void add_shorthand_options(CLI::App& cmd, std::vector<std::pair<std::string, std
   }
 }
 
-/// Terminal progress: simulated time, steps and ETA, redrawn at most five times a second.
-js::sim::ProgressCallback make_progress(bool enabled) {
-  if (!enabled || !::isatty(STDOUT_FILENO)) return {};
+/// `--progress json`: a stage's lines on stderr (experiments/progress.hpp).
+js::sim::ProgressCallback json_progress(const std::string& stage) {
+  auto tracker = std::make_shared<js::experiments::ProgressTracker>(stage);
+  auto lock = std::make_shared<std::mutex>();  // an experiment may run several simulations at once
+  return [tracker, lock](double t, double duration, std::int64_t steps) {
+    const std::lock_guard<std::mutex> guard(*lock);
+    if (auto line = tracker->simulation(t, duration, steps); !line.is_null()) js::experiments::write_progress_line(line);
+  };
+}
+
+/// `--progress json`'s lines of a count (frames rendered, batch runs), safe to call from several threads.
+std::function<void(std::size_t, std::size_t)> json_count_progress(const std::string& stage, const std::string& unit) {
+  auto tracker = std::make_shared<js::experiments::ProgressTracker>(stage);
+  auto lock = std::make_shared<std::mutex>();
+  return [tracker, lock, unit](std::size_t done, std::size_t total) {
+    const std::lock_guard<std::mutex> guard(*lock);
+    if (auto line = tracker->count(done, total, unit); !line.is_null()) js::experiments::write_progress_line(line);
+  };
+}
+
+/// `run`'s render stage: frames rendered of all, on a terminal (bar) or as JSON lines.
+std::function<void(std::size_t, std::size_t)> make_render_progress(const std::string& mode) {
+  if (mode == "json") return json_count_progress("render", "frames");
+  if (mode != "bar" || !::isatty(STDOUT_FILENO)) return {};
+  return [](std::size_t done, std::size_t total) {
+    std::printf("\r  rendering frame %zu / %zu   ", done, total);
+    if (done == total) std::printf("\n");
+    std::fflush(stdout);
+  };
+}
+
+/// With `--progress json`, the closing status line unless one was written; returns `exit_code`.
+int report_status(const std::string& mode, int exit_code, const std::string& out, const std::string& message) {
+  if (mode == "json" && !js::experiments::status_line_written())
+    js::experiments::write_progress_line(js::experiments::progress_status(exit_code, out, message));
+  return exit_code;
+}
+
+/// Progress of a simulation: the terminal display (bar: simulated time, steps and ETA, redrawn at
+/// most five times a second), JSON lines (json), or none.
+js::sim::ProgressCallback make_progress(const std::string& mode) {
+  if (mode == "json") return json_progress("simulate");
+  if (mode != "bar" || !::isatty(STDOUT_FILENO)) return {};
   using clock = std::chrono::steady_clock;
   auto start = std::make_shared<clock::time_point>(clock::now());
   auto last = std::make_shared<clock::time_point>(clock::time_point{});
@@ -191,9 +249,10 @@ struct SceneFile {
 int run_experiment(const js::experiments::Experiment& e, const SceneFile& scene, const RunOptions& o) {
   const js::scene::ConfigSources sources{scene.config, scene.path, scene.expected_kind, false, o.sets, o.duration,
                                          o.shorthands};
+  const std::string mode = progress_mode(o.progress, o.quiet);
   js::experiments::Context ctx{
       js::scene::resolve_config(js::experiments::default_config(e), sources, "experiment '" + e.name + "'"),
-      make_progress(!o.quiet), o.checkpoints};
+      make_progress(mode), o.checkpoints, make_render_progress(mode)};
   auto run = e.prepare(ctx);
   const js::io::OutputDir out =
       o.resume ? js::io::OutputDir::for_resumed_run(o.out, e.name) : js::io::OutputDir::for_run(o.out, e.name);
@@ -207,15 +266,15 @@ int run_experiment(const js::experiments::Experiment& e, const SceneFile& scene,
   if (const int signal = js::core::interrupt_signal(); signal != 0 && !outcome.failure.empty()) {
     std::cerr << "jellysim: " << outcome.failure << "; results so far are in " << out.path().string() << "\n"
               << resume_hint;
-    return 128 + signal;
+    return report_status(mode, 128 + signal, out.path().string(), outcome.failure);
   }
   if (!outcome.failure.empty()) {
     std::cerr << "jellysim: run failed: " << outcome.failure << "\n  (results so far are in " << out.path().string()
               << ")\n";
-    return kExitFailedRun;
+    return report_status(mode, kExitFailedRun, out.path().string(), outcome.failure);
   }
   if (!o.quiet) std::cout << e.name << ": results in " << out.path().string() << "\n";
-  return 0;
+  return report_status(mode, 0, out.path().string(), e.name + ": results in " + out.path().string());
 }
 
 /// The experiment a checkpointed command runs: `simulate` the jellyfish scene, `run` its animation.
@@ -250,14 +309,15 @@ int run_checkpointed_simulation(const std::string& command, const std::string& s
 
 /// `jellysim simulate|run --resume DIR`: continues the run whose checkpoint is in DIR, into DIR
 /// (`run`: the simulation from its checkpoint, then the whole animation, as the run would have).
-int resume_simulation(const std::string& command, const std::string& dir, bool quiet) {
+int resume_simulation(const std::string& command, const std::string& dir, const RunOptions& given) {
   js::io::Checkpoint c = js::io::read_checkpoint(dir);
   if (c.command != command)
     throw js::InputError("--resume '" + dir + "': the checkpoint is of `jellysim " + c.command + "`, not `" + command +
                          "`");
   RunOptions o;
   o.out = dir;
-  o.quiet = quiet;
+  o.quiet = given.quiet;
+  o.progress = given.progress;
   o.sets = c.sets;
   if (!c.duration.empty()) o.duration = std::strtod(c.duration.c_str(), nullptr);  // written by format_double: exact
   o.resume = true;
@@ -427,6 +487,7 @@ struct BatchCommand {
   std::vector<std::string> sets;
   int threads = 0;
   bool quiet = false;
+  std::string progress = "bar";  ///< bar: a line per run (stdout); json: JSON lines (stderr); none
 };
 
 void add_batch_options(CLI::App& cmd, BatchCommand& b) {
@@ -442,6 +503,7 @@ void add_batch_options(CLI::App& cmd, BatchCommand& b) {
                                          "more than one rank, one run per worker rank")
       ->check(CLI::Range(1, 64));
   cmd.add_flag("--quiet", b.quiet, "No line per run");
+  add_progress_option(cmd, b.progress);
   add_memory_limit_option(cmd);
 }
 
@@ -466,11 +528,20 @@ void refuse_several_ranks(const std::string& command) {
 int run_batch(const BatchCommand& b) {
   if (b.out.empty() || b.out.front() == '-')
     throw js::InputError("--out '" + b.out + "': give the batch's directory after --out");
+  const std::string mode = progress_mode(b.progress, b.quiet);
+  const bool quiet = mode == "none" || b.quiet;
+  int code = 0;
 #ifdef JELLYSIM_MPI
-  if (jellysim::app::launched_by_mpi()) return jellysim::app::run_batch_mpi(b.plan, b.sets, b.out, b.threads, b.quiet);
+  if (jellysim::app::launched_by_mpi()) {  // over MPI, --progress json writes the status line only
+    code = jellysim::app::run_batch_mpi(b.plan, b.sets, b.out, b.threads, quiet);
+    return report_status(mode, code, b.out, "batch: " + b.out + "/batch.csv");
+  }
 #endif
   js::experiments::Batch batch(js::experiments::read_batch_plan(b.plan), b.sets, b.out);
-  return js::experiments::run_batch_threaded(batch, b.threads, b.quiet);
+  code = js::experiments::run_batch_threaded(batch, b.threads, quiet,
+                                             mode == "json" ? json_count_progress("batch", "runs")
+                                                            : std::function<void(std::size_t, std::size_t)>{});
+  return report_status(mode, code, b.out, code == 0 ? "batch: " + b.out + "/batch.csv" : "batch interrupted");
 }
 
 /// A command of `jellysim`: its name and help, `define` adds its options to its subcommand and
@@ -495,7 +566,7 @@ std::function<int()> define_scene_command(CLI::App& cmd, const std::string& comm
   add_run_options(cmd, s->options, default_out, set_example);
   add_checkpoint_options(cmd, s->checkpoints, checkpoint_more);
   return [s, command] {
-    if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options.quiet);
+    if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options);
     if (s->checkpoints.every > 0)
       return run_checkpointed_simulation(command, s->scene_path, s->options, s->checkpoints.every);
     return run_scene(s->scene_path, s->options, checkpointed_experiment(command).name);
@@ -638,22 +709,28 @@ std::vector<Command> commands() {
 
 /// Runs the parsed command; a usage or input error is exit 2, a failed run exit 1.
 int run_parsed(const std::vector<std::pair<CLI::App*, std::function<int()>>>& runs) {
+  std::string mode, out;  // a command's --progress and --out, for the status line of an error
   try {
     for (const auto& [command, run] : runs) {
       if (!command->parsed()) continue;
+      if (const CLI::Option* p = command->get_option_no_throw("--progress"); p != nullptr) mode = p->as<std::string>();
+      if (const CLI::Option* d = command->get_option_no_throw("--out"); d != nullptr && d->count() > 0)
+        out = d->as<std::string>();
       if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
-      return run();
+      const int code = run();
+      // A command that writes no status line of its own (a new one) still ends --progress json with one.
+      return report_status(mode, code, out, command->get_name() + (code == 0 ? ": done" : ": exit " + std::to_string(code)));
     }
     return kExitBadInput;  // CLI11 requires one command: not reached
   } catch (const js::InputError& e) {
     std::cerr << "jellysim: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return report_status(mode, kExitBadInput, out, e.what());
   } catch (const std::bad_alloc&) {  // before the run's own guard (experiments::run_guarded)
     std::cerr << "jellysim: run failed: " << js::core::out_of_memory_message() << "\n";
-    return kExitFailedRun;
+    return report_status(mode, kExitFailedRun, out, js::core::out_of_memory_message());
   } catch (const std::exception& e) {
     std::cerr << "jellysim: run failed: " << e.what() << "\n";
-    return kExitFailedRun;
+    return report_status(mode, kExitFailedRun, out, e.what());
   }
 }
 

@@ -8,9 +8,6 @@
 #include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/scene/render_settings.hpp"
 
-#include <cstdio>
-#include <unistd.h>
-
 namespace jellysim::experiments {
 namespace {
 
@@ -31,7 +28,6 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     write_scene_extras(out, rec);
     if (!rec.metrics.empty()) write_swim_plots(out, rec.metrics, "jellyfish");
     nlohmann::ordered_json figures = swim_figures(settings, rec);
-    const bool terminal = ctx.progress && ::isatty(STDOUT_FILENO);
     // Every jellyfish in one animation; individual j's noise seed is render.noise.seed plus its
     // noise_seed − 1 (docs/scenes.md), so the first one keeps render.noise.seed.
     std::vector<std::vector<jellyfish::SliceFrame>> school{rec.frames};
@@ -39,13 +35,11 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     std::vector<std::uint64_t> seeds;
     for (const jellyfish::JellyfishSpec& j : settings.school)
       seeds.push_back(pipeline.geometry.noise.seed + static_cast<std::uint64_t>(j.noise_seed) - 1);
+    if (ctx.render_progress) ctx.render_progress(0, rec.frames.size());  // the render stage starts
     const render::AnimationOutputs anim = render::write_animation_outputs(
         school, seeds, pipeline, out,
-        [terminal](std::size_t done, std::size_t total) {
-          if (!terminal) return;
-          std::printf("\r  rendering frame %zu / %zu   ", done, total);
-          if (done == total) std::printf("\n");
-          std::fflush(stdout);
+        [&ctx](std::size_t done, std::size_t total) {
+          if (ctx.render_progress) ctx.render_progress(done, total);
         },
         rec.obstacle_outlines, rec.tracers);
     figures["animation"] = anim.figures();

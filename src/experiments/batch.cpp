@@ -10,6 +10,7 @@
 #include "jellysim/io/output.hpp"
 #include "jellysim/scene/resolve.hpp"
 
+#include <atomic>
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -373,17 +374,21 @@ void report_batch_run(const Batch& batch, std::size_t k, const BatchRow& row, bo
               << " s)" << std::endl;
 }
 
-int run_batch_threaded(Batch& batch, int threads, bool quiet) {
+int run_batch_threaded(Batch& batch, int threads, bool quiet,
+                       const std::function<void(std::size_t done, std::size_t total)>& on_run) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::size_t> todo = batch.prepare_directory();
   std::vector<BatchRow> rows = batch.starting_rows();
   const int workers = std::max(1, std::min(resolve_threads(threads), static_cast<int>(todo.size())));
   core::install_interrupt_handlers();
   WorkerPool pool(workers);
+  std::atomic<std::size_t> done{0};
+  if (on_run) on_run(0, todo.size());
   pool.run_tasks(todo.size(), [&](std::size_t i) {
     if (core::interrupt_signal() != 0) return;  // stopping: the runs not started stay unfinished
     rows[todo[i]] = batch.run(todo[i]);
     report_batch_run(batch, todo[i], rows[todo[i]], quiet);
+    if (on_run) on_run(++done, todo.size());
   });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return finish_batch(batch, rows, "threads: " + std::to_string(workers), wall, quiet);

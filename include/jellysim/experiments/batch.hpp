@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -108,8 +109,10 @@ std::vector<std::string> batch_csv_columns(const BatchPlan& plan);
 
 /// Runs the batch on `threads` workers (0: one per core) in this process, each taking the next
 /// unfinished run; writes the tables unless interrupted. Returns the exit status: 0 when every run
-/// finished (failed runs included), 128 + signal when interrupted.
-int run_batch_threaded(Batch& batch, int threads, bool quiet);
+/// finished (failed runs included), 128 + signal when interrupted. `on_run` (optional) hears of each
+/// run finished: how many of the runs to do are done (`--progress json`).
+int run_batch_threaded(Batch& batch, int threads, bool quiet,
+                       const std::function<void(std::size_t done, std::size_t total)>& on_run = {});
 
 /// One line for a run just done: on stderr when it failed, else on stdout unless `quiet`.
 void report_batch_run(const Batch& batch, std::size_t k, const BatchRow& row, bool quiet);

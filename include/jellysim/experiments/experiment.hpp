@@ -22,6 +22,8 @@ struct Context {
   sim::ProgressCallback progress;
   /// `jellysim simulate --checkpoint-every` / `--resume` (null: no checkpoints).
   std::shared_ptr<const Checkpointing> checkpoints{};
+  /// The 3D frames rendered so far of all (`jellysim run`'s render stage; may be empty).
+  std::function<void(std::size_t done, std::size_t total)> render_progress{};
 };
 
 /// Result of an experiment run. `failure` non-empty means the run failed (exit code 1) after
