@@ -64,10 +64,17 @@ double muscle_work(const std::vector<jellyfish::SliceFrame>& frames, double t_fr
   return rings ? std::numbers::pi * work : work;
 }
 
+/// The muscle sheet's largest total pull over the run: max over frames of Σ_m max(T_m, 0) (N per
+/// metre of depth; rings: the planar spring forces). The sum, unlike one spring's tension, does not
+/// depend on how many springs the marker spacing gives the sheet; over a fixed muscle cross-section
+/// it is the peak mean muscle stress times that section.
 double peak_tension(const std::vector<jellyfish::SliceFrame>& frames) {
   double peak = 0.0;
-  for (const auto& f : frames)
-    for (const auto& m : f.muscles) peak = std::max(peak, m.tension_n);
+  for (const auto& f : frames) {
+    double sum = 0.0;
+    for (const auto& m : f.muscles) sum += std::max(0.0, m.tension_n);
+    peak = std::max(peak, sum);
+  }
   return peak;
 }
 

@@ -23,6 +23,17 @@ std::string list_text(const std::vector<std::string>& names) {
   return text;
 }
 
+/// A table's entries in the order of the file (toml++ keeps them sorted by key).
+std::vector<std::pair<std::string, const toml::node*>> in_file_order(const toml::table& t) {
+  std::vector<std::pair<std::string, const toml::node*>> out;
+  for (auto&& [k, v] : t) out.emplace_back(std::string(k.str()), &v);
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+    const auto pa = a.second->source().begin, pb = b.second->source().begin;
+    return pa.line != pb.line ? pa.line < pb.line : pa.column < pb.column;
+  });
+  return out;
+}
+
 std::string at(const std::string& file, const toml::node& n) {
   return file + ":" + std::to_string(n.source().begin.line) + ": ";
 }
@@ -80,8 +91,9 @@ void read_objectives(const toml::node& n, const std::string& file, OptimizePlan&
 void read_variables(const toml::node& n, const std::string& file, OptimizePlan& plan) {
   const toml::table* t = n.as_table();
   if (!t || t->empty()) throw InputError(file + ": field 'variables' must be a table of \"key\" = [lower, upper]");
-  for (auto&& [k, v] : *t) {
-    const std::string key(k.str());
+  for (const PlanLeaf& l : plan_leaves(*t)) {  // in the file's order
+    const std::string& key = l.key;
+    const toml::node& v = *l.node;
     if (key == "scene" || key == "duration")
       throw InputError(at(file, v) + "variables." + key + ": not a design variable (a numeric scene key)");
     const auto [lo, hi] = bounds(v, file, "variables." + key, false);
@@ -92,8 +104,9 @@ void read_variables(const toml::node& n, const std::string& file, OptimizePlan& 
 void read_constraints(const toml::node& n, const std::string& file, OptimizePlan& plan) {
   const toml::table* t = n.as_table();
   if (!t) throw InputError(file + ": field 'constraints' must be a table of figure = [lower, upper]");
-  for (auto&& [k, v] : *t) {
-    const std::string figure(k.str());
+  for (const PlanLeaf& l : plan_leaves(*t)) {  // in the file's order
+    const std::string& figure = l.key;
+    const toml::node& v = *l.node;
     if (std::find(stroke_figure_names().begin(), stroke_figure_names().end(), figure) == stroke_figure_names().end())
       throw InputError(at(file, v) + "constraints." + figure + ": unknown figure; one of " + list_text(stroke_figure_names()));
     const auto [lo, hi] = bounds(v, file, "constraints." + figure, true);

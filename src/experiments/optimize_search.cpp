@@ -147,6 +147,8 @@ SearchRow OptimizeRun::make_row(const std::vector<double>& x, const Evaluation& 
 const SearchRow& OptimizeRun::evaluate(const std::vector<double>& x) {
   for (const SearchRow& r : rows)
     if (r.x == x) return r;  // NLopt asking again (a constraint after the objective)
+  const int total = budget > 0 ? budget : plan.evaluations;
+  if (!rows.empty() && static_cast<int>(rows.size()) >= total) throw nlopt::forced_stop();  // the budget is spent
   SearchRow row;
   if (replayed < previous.size() && previous[replayed].x == x) {
     row = previous[replayed++];
@@ -206,13 +208,15 @@ void OptimizeRun::search(const std::vector<double>& x0) {
   std::vector<double> step;
   for (std::size_t i = 0; i < n; ++i) step.push_back(0.25 * (hi[i] - lo[i]));
   opt.set_initial_step(step);
-  opt.set_maxeval(total - 1);
+  opt.set_maxeval(2 * total);  // NLopt asks for the baseline again and constraints' points twice: evaluate() counts
   opt.set_xtol_rel(1e-6);
   if (opt.get_algorithm() == nlopt::GN_CRS2_LM || opt.get_algorithm() == nlopt::GN_ISRES)
     opt.set_population(std::max(10u, 2 * (n + 1)));
   double value = 0.0;
   try {
     result = result_name(opt.optimize(start, value));
+  } catch (const nlopt::forced_stop&) {
+    result = "budget_spent";
   } catch (const std::exception& e) {
     result = std::string("stopped: ") + e.what();
   }
