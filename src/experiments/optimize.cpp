@@ -79,7 +79,7 @@ void validate_plan(const OptimizePlan& plan) {
                      "sbplx or direct for one)");
 }
 
-void write_progress_png(const OptimizeRun& run, const fs::path& path, const std::string& objective) {
+void write_progress_png(const OptimizeRun& run, const io::OutputDir& out, const std::string& objective) {
   render::Series all{"evaluations", {}, {}, true, false};
   render::Series best{"best so far (feasible)", {}, {}, false, true};
   double best_value = NAN;
@@ -98,7 +98,7 @@ void write_progress_png(const OptimizeRun& run, const fs::path& path, const std:
   chart.x_label = "evaluation";
   chart.y_label = objective;
   chart.series = {all, best};
-  render::write_chart_png(chart, path);
+  out.write_text("progress.png", render::chart_png(chart));
 }
 
 }  // namespace
@@ -141,7 +141,7 @@ nlohmann::ordered_json run_optimize(const OptimizePlan& plan, const fs::path& ou
   run.search(scene_values(plan));
   const SearchRow* best = run.best();
   if (best) out.write_text("best.toml", evaluation_config(plan, best->x).to_toml());
-  write_progress_png(run, out.file("progress.png"), plan.objectives[0]);
+  write_progress_png(run, out, plan.objectives[0]);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::ordered_json figures = optimize_summary(run, wall);
   write_summary(out, "optimize", evaluation_config(plan, run.rows.empty() ? std::vector<double>{} : run.rows[0].x),
