@@ -31,4 +31,8 @@ Scene load_scene(const py::object& source, const py::object& overrides);
 py::dict run_experiment(const std::string& name, const py::object& out, const py::object& scene,
                         const py::object& overrides, const py::kwargs& kwargs);
 
+/// jellysim.optimize: `jellysim optimize` with the plan a dict or a path (docs/control.md), into
+/// `out` (default out/optimize), without the GIL; returns summary.json as a dict.
+py::dict optimize(const py::object& plan, const py::object& out, bool quiet);
+
 }  // namespace jellysim::python
