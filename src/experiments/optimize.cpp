@@ -36,9 +36,12 @@ io::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>
   const io::Config base = scene::builtin_jellyfish_scene();
   double duration = plan.duration.value_or(plan.target_time_s);
   if (plan.cycles) {
-    const double frequency = scene::resolve_config(base, sources, "the jellyfish scene").number("jellyfish.frequency");
+    const io::Config resolved = scene::resolve_config(base, sources, "the jellyfish scene");
+    const double frequency = resolved.number("jellyfish.frequency");
     if (!(frequency > 0)) throw InputError("field 'cycles' needs jellyfish.frequency > 0");
-    duration = *plan.cycles / frequency;
+    // One frame beyond the last cycle: the run's last frame lies on the frame clock, which may stop
+    // short of cycles / f; the figures count the whole cycles recorded (stroke_figures).
+    duration = *plan.cycles / frequency + resolved.number("output.frame_interval");
   }
   sources.sets.push_back("duration=" + io::format_double(duration));
   return scene::resolve_config(base, sources, "the jellyfish scene");

@@ -100,7 +100,7 @@ std::map<std::string, double> stroke_figures(const jellyfish::SwimSettings& sett
   std::map<std::string, double> f;
   const double frequency = settings.jellyfish().frequency_hz;
   const double period = frequency > 0 ? 1.0 / frequency : INFINITY;
-  const double cycles = std::floor(rec.stats.simulated_seconds * frequency + 1e-9);
+  const double cycles = std::floor(rec.stats.simulated_seconds * frequency + 1e-6);  // whole cycles recorded
   const double counted = cycles - 1.0;  // the cycles after the first
   const double travelled = counted >= 1 ? position_at(rec.metrics, cycles * period) - position_at(rec.metrics, period) : 0.0;
   f["distance_per_cycle"] = counted >= 1 ? travelled / counted : 0.0;
