@@ -117,7 +117,7 @@ void write_outputs(const io::OutputDir& out, const RingDown& d, const std::vecto
   render::ChartSpec chart;
   chart.title = "resonance: speed against driving frequency" +
                 (std::isnan(d.frequency_hz) ? std::string(" (ring-down overdamped)")
-                                            : " (natural " + io::format_number(d.frequency_hz) + " Hz)");
+                                            : " (natural " + std::to_string(std::lround(d.frequency_hz * 100) / 100.0).substr(0, 4) + " Hz)");
   chart.x_label = "frequency";
   chart.x_unit = "Hz";
   chart.y_label = "speed";
