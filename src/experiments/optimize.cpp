@@ -100,7 +100,7 @@ void write_progress_png(const OptimizeRun& run, const io::OutputDir& out, const 
   chart.title = "optimize: " + objective + " (" + run.plan.algorithm + ")";
   chart.x_label = "evaluation";
   chart.y_label = objective;
-  chart.y_unit = objective == "speed" ? "m/s" : objective == "distance_per_cycle" || objective == "reach" ? "m" : "";
+  chart.y_unit = objective_unit(objective);
   chart.series = {all, best};
   out.write_text("progress.png", render::chart_png(chart));
 }

@@ -70,6 +70,8 @@ void write_pareto_files(const io::OutputDir& out, const OptimizePlan& plan, cons
   chart.title = "optimize: Pareto front (" + plan.algorithm + ", weighted sums)";
   chart.x_label = plan.objectives[0];
   chart.y_label = plan.objectives[1];
+  chart.x_unit = objective_unit(plan.objectives[0]);
+  chart.y_unit = objective_unit(plan.objectives[1]);
   chart.series = {everything, line};
   render::write_chart_png(chart, out.file("pareto.png"));
 }

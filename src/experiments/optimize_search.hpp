@@ -79,6 +79,11 @@ nlohmann::ordered_json run_pareto(const OptimizePlan& plan, const std::filesyste
 /// summary.json's figures of one search (best and baseline objective and variables, counts).
 nlohmann::ordered_json optimize_summary(const OptimizeRun& run, double wall_seconds);
 
+/// The SI unit of an objective's value ("" for a pure number), for the charts' axes.
+inline std::string objective_unit(const std::string& name) {
+  return name == "speed" ? "m/s" : name == "distance_per_cycle" || name == "reach" ? "m" : "";
+}
+
 /// Whether an objective is naturally maximised (distance_per_cycle, speed, efficiency).
 bool maximised_objective(const std::string& name);
 
