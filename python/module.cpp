@@ -182,4 +182,8 @@ PYBIND11_MODULE(jellysim, m) {
         "Runs an experiment (or `simulate`, `run`) into out (default out/NAME) and returns summary.json as a dict; "
         "keyword overrides use __ for . (jellyfish__frequency=0.9). progress(dict) (optional) hears `--progress "
         "json`'s objects (stages simulate, and render for `run`); an exception it raises is raised after the run.");
+  m.def("optimize", &jp::optimize, py::arg("plan"), py::kw_only(), py::arg("out") = py::none(), py::arg("quiet") = true,
+        "Runs `jellysim optimize`: plan a dict (the plan file's fields and tables) or a plan file's path; writes "
+        "evaluations.csv, best.toml, progress.png, summary.json into out (default out/optimize; an earlier run "
+        "there is resumed) and returns summary.json as a dict (docs/control.md).");
 }

@@ -38,4 +38,8 @@ py::dict run_experiment(const std::string& name, const py::object& out, const py
 /// A JSON object as a Python dict (json.loads of its text).
 py::object json_dict(const nlohmann::ordered_json& value);
 
+/// jellysim.optimize: `jellysim optimize` with the plan a dict or a path (docs/control.md), into
+/// `out` (default out/optimize), without the GIL; returns summary.json as a dict.
+py::dict optimize(const py::object& plan, const py::object& out, bool quiet);
+
 }  // namespace jellysim::python

@@ -3,6 +3,7 @@
 #include "jellysim/experiments/batch.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
+#include "jellysim/experiments/optimize.hpp"
 #include "jellysim/experiments/embedded_data.hpp"
 #include "jellysim/experiments/progress.hpp"
 #include "jellysim/core/errors.hpp"
@@ -544,6 +545,37 @@ int run_batch(const BatchCommand& b) {
   return report_status(mode, code, b.out, code == 0 ? "batch: " + b.out + "/batch.csv" : "batch interrupted");
 }
 
+/// Options of `jellysim optimize`.
+struct OptimizeCommand {
+  std::string plan;
+  std::string out = "out/optimize";
+  bool quiet = false;
+  std::string progress = "bar";  ///< bar: a line per evaluation (stdout); json: JSON lines (stderr); none
+};
+
+void add_optimize_options(CLI::App& cmd, OptimizeCommand& o) {
+  cmd.add_option("plan", o.plan, "Plan file (TOML): scene, cycles, objective, sense, algorithm, evaluations, seed, "
+                                 "[set], [variables], [constraints], [target] (docs/control.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--out", o.out, "Directory for evaluations.csv, best.toml, progress.png, summary.json; an earlier "
+                                 "run's evaluations.csv there is replayed (resume)")
+      ->capture_default_str();
+  cmd.add_flag("--quiet", o.quiet, "No line per evaluation");
+  add_progress_option(cmd, o.progress);
+  add_memory_limit_option(cmd);
+}
+
+int run_optimize_command(const OptimizeCommand& o) {
+  if (o.out.empty() || o.out.front() == '-') throw js::InputError("--out '" + o.out + "': give a directory after --out");
+  const std::string mode = progress_mode(o.progress, o.quiet);
+  js::experiments::run_optimize(js::experiments::read_optimize_plan(o.plan), o.out, o.quiet || mode == "none", {},
+                                mode == "json" ? json_count_progress("optimize", "evaluations")
+                                               : js::experiments::EvaluationProgress{});
+  if (!o.quiet) std::cout << "optimize: results in " << o.out << "\n";
+  return report_status(mode, 0, o.out, "optimize: " + o.out + "/summary.json");
+}
+
 /// A command of `jellysim`: its name and help, `define` adds its options to its subcommand and
 /// returns what runs it once parsed. A new command is a row of commands().
 struct Command {
@@ -694,6 +726,12 @@ std::vector<Command> commands() {
        "`simulate` writes it, and one combined DIR/batch.csv; on threads, or over MPI under mpirun; rerun to resume "
        "a killed batch (docs/batch.md)",
        [](CLI::App& cmd) { return define_with<BatchCommand>(cmd, add_batch_options, run_batch); }},
+      {"optimize",
+       "Search the muscle control with NLopt (BOBYQA, COBYLA, CRS2, ISRES, DIRECT, ...): a plan's design variables "
+       "(scene keys with bounds) for an objective (distance_per_cycle, speed, cost_of_transport, efficiency, reach) "
+       "under constraints: evaluations.csv, best.toml, progress.png, summary.json; two objectives: pareto.csv, "
+       "pareto.png; rerun to resume (docs/control.md)",
+       [](CLI::App& cmd) { return define_with<OptimizeCommand>(cmd, add_optimize_options, run_optimize_command); }},
       {"view",
        "Real-time viewer: the 2D slice in its fluid beside the 3D jellyfish; pause, step, live parameters, drag "
        "jellyfish and obstacles, stir the water, record PNG/MP4 (docs/viewer.md). Needs a display (or xvfb-run -a)",

@@ -5,41 +5,33 @@
 
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/output.hpp"
-
-#include <toml++/toml.h>
+#include "plan_values.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
 namespace jellysim::experiments {
-namespace {
-
 constexpr std::size_t kMaxRuns = 100000;
-
-/// A value of the plan with its dotted key and where it stands in the file (plan order).
-struct Leaf {
-  std::string key;
-  const toml::node* node;
-  toml::source_position at;
-};
 
 /// The values of a table with dotted keys ([product] jellyfish.frequency = ..., "jellyfish.frequency"
 /// = ... and [product.jellyfish] frequency = ... are the same key), in the order of the file.
-std::vector<Leaf> leaves(const toml::table& table, const std::string& prefix = "") {
-  std::vector<Leaf> out;
+std::vector<PlanLeaf> plan_leaves(const toml::table& table, const std::string& prefix) {
+  std::vector<PlanLeaf> out;
   for (auto&& [k, v] : table) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (const toml::table* sub = v.as_table()) {
-      for (Leaf& l : leaves(*sub, key)) out.push_back(std::move(l));
+      for (PlanLeaf& l : plan_leaves(*sub, key)) out.push_back(std::move(l));
     } else {
       out.push_back({key, &v, v.source().begin});
     }
   }
-  std::stable_sort(out.begin(), out.end(), [](const Leaf& a, const Leaf& b) {
+  std::stable_sort(out.begin(), out.end(), [](const PlanLeaf& a, const PlanLeaf& b) {
     return a.at.line != b.at.line ? a.at.line < b.at.line : a.at.column < b.at.column;
   });
   return out;
 }
+
+namespace {
 
 std::string toml_string(std::string_view text) {
   std::string q = "\"";
@@ -50,36 +42,43 @@ std::string toml_string(std::string_view text) {
   return q + "\"";
 }
 
-/// A plan value as the TOML text of a --set value; `where` names it in errors.
-std::string literal(const toml::node& n, const std::string& where) {
+}  // namespace
+
+std::string plan_literal(const toml::node& n, const std::string& where) {
   if (const auto* s = n.as_string()) return toml_string(s->get());
   if (const auto* i = n.as_integer()) return std::to_string(i->get());
   if (const auto* f = n.as_floating_point()) return io::format_double(f->get());
   if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
   if (const auto* a = n.as_array()) {
     std::string text = "[";
-    for (std::size_t k = 0; k < a->size(); ++k) text += (k ? ", " : "") + literal(*a->get(k), where);
+    for (std::size_t k = 0; k < a->size(); ++k) text += (k ? ", " : "") + plan_literal(*a->get(k), where);
     return text + "]";
   }
   throw InputError(where + ": a table or a date is not a --set value");
 }
+
+namespace {
 
 void check_key(const std::string& key, const std::string& where) {
   if (key == "scene")
     throw InputError(where + ": the scene kind cannot be overridden; give `scene = \"FILE\"` at the top of the plan");
 }
 
-std::vector<std::string> read_shared(const toml::node& node, const std::string& file) {
+}  // namespace
+
+std::vector<std::string> read_plan_set(const toml::node& node, const std::string& file) {
   const toml::table* table = node.as_table();
   if (!table) throw InputError(file + ": field 'set' must be a table of key = value");
   std::vector<std::string> shared;
-  for (const Leaf& l : leaves(*table)) {
+  for (const PlanLeaf& l : plan_leaves(*table)) {
     const std::string where = file + ": set." + l.key;
     check_key(l.key, where);
-    shared.push_back(l.key + "=" + literal(*l.node, where));
+    shared.push_back(l.key + "=" + plan_literal(*l.node, where));
   }
   return shared;
 }
+
+namespace {
 
 /// [product]: every combination, the last key varying fastest.
 void read_product(const toml::node& node, const std::string& file, BatchPlan& plan) {
@@ -87,7 +86,7 @@ void read_product(const toml::node& node, const std::string& file, BatchPlan& pl
   if (!table) throw InputError(file + ": field 'product' must be a table of key = [values]");
   std::vector<std::vector<std::string>> values;
   std::size_t count = 1;
-  for (const Leaf& l : leaves(*table)) {
+  for (const PlanLeaf& l : plan_leaves(*table)) {
     const std::string where = file + ": product." + l.key;
     check_key(l.key, where);
     const toml::array* list = l.node->as_array();
@@ -95,7 +94,7 @@ void read_product(const toml::node& node, const std::string& file, BatchPlan& pl
     if (list->empty()) throw InputError(where + ": the list is empty (a product with it would have no runs)");
     plan.keys.push_back(l.key);
     values.emplace_back();
-    for (const toml::node& v : *list) values.back().push_back(literal(v, where));
+    for (const toml::node& v : *list) values.back().push_back(plan_literal(v, where));
     count *= list->size();
     if (count > kMaxRuns) throw InputError(where + ": the product has more than " + std::to_string(kMaxRuns) + " runs");
   }
@@ -112,10 +111,10 @@ void read_runs(const toml::node& node, const std::string& file, BatchPlan& plan)
   std::vector<std::vector<std::pair<std::string, std::string>>> given;
   for (std::size_t r = 0; r < list->size(); ++r) {
     given.emplace_back();
-    for (const Leaf& l : leaves(*list->get(r)->as_table())) {
+    for (const PlanLeaf& l : plan_leaves(*list->get(r)->as_table())) {
       const std::string where = file + ": runs[" + std::to_string(r) + "]." + l.key;
       check_key(l.key, where);
-      given.back().emplace_back(l.key, literal(*l.node, where));
+      given.back().emplace_back(l.key, plan_literal(*l.node, where));
       if (std::find(plan.keys.begin(), plan.keys.end(), l.key) == plan.keys.end()) plan.keys.push_back(l.key);
     }
   }
@@ -139,7 +138,7 @@ void read_top_level(const toml::table& table, const std::string& file, BatchPlan
       if (!d || !(*d > 0.0)) throw InputError(file + ": field 'duration' must be a positive number of seconds");
       plan.duration = *d;
     } else if (key == "set") {
-      plan.shared = read_shared(v, file);
+      plan.shared = read_plan_set(v, file);
     } else if (key != "product" && key != "runs") {
       throw InputError(file + ": unknown field '" + key + "' (a plan has scene, duration, [set], [product] or [[runs]])");
     }

@@ -42,6 +42,7 @@ Experiment obstacle_flow_experiment();
 Experiment hoover_miller_experiment();
 Experiment axisymmetric_vs_planar_experiment();
 Experiment convergence_experiment();
+Experiment resonance_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
@@ -54,7 +55,7 @@ const std::vector<Experiment>& all_experiments() {
                                                mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
                                                steering_experiment(), obstacle_flow_experiment(),
                                                hoover_miller_experiment(), axisymmetric_vs_planar_experiment(),
-                                               convergence_experiment()};
+                                               convergence_experiment(), resonance_experiment()};
   return list;
 }
 

@@ -556,8 +556,10 @@ SliceFrame Jellyfish::slice_frame(double t) const {
   const int n = static_cast<int>(f.umbrella.size());
   for (std::size_t k = 0; k < layout_.muscle_springs.size(); ++k) {
     const int a = static_cast<int>(k), b = n - 1 - static_cast<int>(k);
-    f.muscles.push_back({a, b, norm(f.umbrella[static_cast<std::size_t>(b)] - f.umbrella[static_cast<std::size_t>(a)]),
-                         layout_.muscle_uncontracted_m[k]});
+    const double length = norm(f.umbrella[static_cast<std::size_t>(b)] - f.umbrella[static_cast<std::size_t>(a)]);
+    const auto spring = static_cast<std::size_t>(layout_.muscle_springs[k]);
+    const double tension = body_->linear.stiffness[spring] * (length - body_->linear.rest_length[spring]);
+    f.muscles.push_back({a, b, length, layout_.muscle_uncontracted_m[k], tension});
   }
   f.thickness_m = spec_.thickness_m;
   const Vec2 aperture = 0.5 * (f.umbrella.front() + f.umbrella.back());

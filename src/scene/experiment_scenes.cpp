@@ -127,6 +127,15 @@ ParameterTable make_jellyfish_study_rules() {
            "from the start, x > 0: the left target is at (−x, y), the right one at (x, y)"),
       rule("steering.settle_cycles", Type::number, "", non_negative, "headings are averaged after this many cycles"),
       rule("study.time_steps", Type::numbers, "s", positive, "coupling-stability: the Δt caps tried"),
+      rule("resonance.hold", Type::number, "s", Range::closed(0.0, 60.0),
+           "resonance: the contraction is held this long at its peak before the release"),
+      rule("resonance.ring_down", Type::number, "s", Range{0.0, 60.0, true, false},
+           "resonance: the bell's volume is recorded this long after the release"),
+      rule("resonance.multiples", Type::numbers, "", Range{0.0, 20.0, true, false},
+           "resonance: the sweep's driving frequencies as multiples of the natural frequency"),
+      rule("resonance.cycles", Type::number, "", Range::closed(2.0, 1000.0),
+           "resonance: cycles each sweep run swims (speed and cost over the cycles after the first)"),
+      rule("resonance.threads", Type::integer, "", Range::closed(0, 64), "resonance: sweep runs at a time; 0: one per core"),
   };
   return ParameterTable("jellyfish-studies", "", std::move(p));
 }
@@ -250,6 +259,18 @@ SteeringScene read_steering(const io::Config& c) {
   if (!(s.target_offset.x > 0))
     throw InputError("field 'steering.target_offset' needs x > 0 (the target to the left is at −x)");
   s.settle_cycles = r.number("steering.settle_cycles");
+  return s;
+}
+
+ResonanceScene read_resonance(const io::Config& c) {
+  const Reader r(c, jellyfish_study_rules());
+  ResonanceScene s;
+  s.hold_s = r.number("resonance.hold");
+  s.ring_down_s = r.number("resonance.ring_down");
+  s.multiples = r.numbers("resonance.multiples");
+  if (s.multiples.empty()) throw InputError("field 'resonance.multiples' is empty: give at least one multiple in (0, 20]");
+  s.cycles = r.number("resonance.cycles");
+  s.threads = static_cast<int>(r.integer("resonance.threads"));
   return s;
 }
 

@@ -117,6 +117,21 @@ TEST(ProgressJson, BatchCountsItsRuns) {
   fs::remove_all(dir);
 }
 
+TEST(ProgressJson, OptimizeCountsItsEvaluations) {
+  const fs::path dir = cli::fresh_scratch_dir("progress_optimize");
+  fs::create_directories(dir);
+  const fs::path plan = dir / "plan.toml";
+  std::ofstream(plan) << "cycles = 2\nobjective = \"distance_per_cycle\"\nalgorithm = \"cobyla\"\nevaluations = 3\n"
+                         "[set]\n\"tank.cells\" = [48, 64]\n\"jellyfish.frequency\" = 3.0\n"
+                         "[variables]\n\"jellyfish.frequency\" = [2.5, 3.5]\n";
+  const auto lines = progress_lines("optimize " + plan.string() + " --out " + (dir / "out").string());
+  expect_well_formed(lines, "optimize", "done", 0);
+  const json& last_count = lines[lines.size() - 2];
+  EXPECT_EQ(last_count["evaluations_total"], 3) << last_count;
+  EXPECT_GE(last_count["evaluations"].get<int>(), 1) << last_count;
+  fs::remove_all(dir);
+}
+
 // A bad input is exit 2 and a "failed" status line whose message names the field.
 TEST(ProgressJson, BadInputEndsWithAFailedStatus) {
   const fs::path dir = cli::fresh_scratch_dir("progress_bad");

@@ -140,7 +140,7 @@ TEST(ExperimentScenes, JellyfishStudiesFollowTheirRules) {
   std::set<std::string> used;
   int checked = 0;
   for (const char* name : {"structural-instability", "numerical-instability", "frequency-sweep", "sweep", "fluidless",
-                           "coupling-stability", "steering"}) {
+                           "coupling-stability", "steering", "resonance"}) {
     const io::Config c = experiment_config(name);
     EXPECT_NO_THROW(scene::Reader(c, rules).validate_all()) << name;
     for (const Parameter& p : rules.parameters())

@@ -12,6 +12,9 @@ struct MuscleState {
   int a = 0, b = 0;             ///< indices into SliceFrame::umbrella (a < b, opposing sides)
   double length_m = 0.0;        ///< current length |x_b − x_a|
   double rest_length_m = 0.0;   ///< uncontracted rest length l_{r_u} (eq. 7.5)
+  /// Spring tension now, κ (l − l_r(t)) with l_r(t) the contracted rest length: N per metre of
+  /// depth (planar slice) or the ring muscle's planar spring force (rings); positive pulls.
+  double tension_n = 0.0;
 };
 
 struct SliceFrame {

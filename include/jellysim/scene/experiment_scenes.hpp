@@ -82,6 +82,16 @@ struct SteeringScene {
 };
 SteeringScene read_steering(const io::Config& c);
 
+/// resonance (docs/control.md): the release test and the frequency sweep around its result.
+struct ResonanceScene {
+  double hold_s = 1.0;        ///< the contraction held at its peak before the release
+  double ring_down_s = 2.0;   ///< volume recorded after the release
+  std::vector<double> multiples;  ///< sweep frequencies / natural frequency
+  double cycles = 4.0;        ///< cycles per sweep run
+  int threads = 0;
+};
+ResonanceScene read_resonance(const io::Config& c);
+
 /// coupling-stability: the Δt caps tried.
 std::vector<double> read_coupling_stability_steps(const io::Config& c);
 
