@@ -30,7 +30,7 @@ jellyfish::SwimSettings run_settings(const Scene& scene) {
 
 }  // namespace
 
-Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
+Scene resolve_scene(const config::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
   scene::ConfigSources sources{{}, overlay_name, "jellyfish", false, sets};
   if (overlay) sources.scene_file = *overlay;
   Scene scene{scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene"), {}, {}};

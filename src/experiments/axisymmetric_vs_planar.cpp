@@ -29,11 +29,11 @@ struct Comparison {
   int cycles = 4;
 };
 
-Comparison read_comparison(io::Config c) {
+Comparison read_comparison(config::Config c) {
   Comparison run;
   run.cycles = scene::read_axisymmetric_vs_planar_cycles(c);
   const double frequency = scene::Reader(c, scene::jellyfish_scene()).number("jellyfish.frequency");
-  c.set("duration=" + io::format_number(run.cycles / frequency));
+  c.set("duration=" + config::format_number(run.cycles / frequency));
   for (std::size_t g = 0; g < 2; ++g) {
     c.set(std::string("tank.geometry=\"") + kGeometries[g].name + "\"");
     run.settings[g] = scene::read_swim_settings(c);

@@ -28,7 +28,7 @@ struct HooverMillerRun {
   std::string muscles = "ib2d";  ///< "ib2d" (IB2d's fixed muscle stiffness) or "per-length" (the consistent variant)
 };
 
-HooverMillerRun read_hoover_miller(io::Config c) {
+HooverMillerRun read_hoover_miller(config::Config c) {
   HooverMillerRun run;
   const scene::HooverMillerFields fields = scene::read_hoover_miller_fields(c);
   run.re = fields.re;
@@ -41,7 +41,7 @@ HooverMillerRun read_hoover_miller(io::Config c) {
   run.bell = jellyfish::hoover_miller_bell(spec);
   c.set("duration=" + std::to_string(run.cycles));
   c.set("tank.cells=[" + std::to_string(spec.cells_x()) + ", " + std::to_string(spec.cells_y()) + "]");
-  c.set("tank.viscosity=" + io::format_number(1.0 / run.re));  // μ = 1000/Re Pa·s, ρ = 1000 kg/m³
+  c.set("tank.viscosity=" + config::format_number(1.0 / run.re));  // μ = 1000/Re Pa·s, ρ = 1000 kg/m³
   run.settings = scene::read_swim_settings(c);
   if (run.settings.structures.size() != 1 || !run.settings.school.empty() || !run.settings.obstacles.empty())
     throw InputError("experiment hoover-miller needs exactly one object, of type \"ib2d\" (the bell), and no jellyfish");

@@ -237,7 +237,7 @@ double next_checkpoint_time(double t, double every) { return (std::floor(t / eve
 
 }  // namespace
 
-SwimOutputOptions read_output_options(const io::Config& c) {
+SwimOutputOptions read_output_options(const config::Config& c) {
   const scene::Reader r(c, scene::jellyfish_scene());
   SwimOutputOptions o;
   o.pictures = r.boolean("output.pictures");

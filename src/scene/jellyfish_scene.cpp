@@ -16,7 +16,7 @@ namespace jellysim::scene {
 
 namespace {
 
-using io::Range;
+using config::Range;
 constexpr double kDegree = std::numbers::pi / 180.0;
 const Range kPositive = Range::positive();
 const Range kNonNegative = Range::non_negative();
@@ -224,7 +224,7 @@ void refuse_other_models_fields(const Reader& r, jellyfish::ElasticModel model) 
     const std::string key = std::string("jellyfish.") + field;
     const double value = r.number(key);
     if (value == std::stod(r.table().at(key).value)) continue;
-    throw InputError("field '" + key + "' = " + io::format_number(value) + " belongs to jellyfish.elastic_model = \"" +
+    throw InputError("field '" + key + "' = " + config::format_number(value) + " belongs to jellyfish.elastic_model = \"" +
                      (continuum ? "thesis" : "continuum") + "\", but the model is \"" + (continuum ? "continuum" : "thesis") +
                      "\": set jellyfish.elastic_model = \"" + (continuum ? "thesis" : "continuum") + "\" or use " +
                      (continuum ? "stretching_stiffness, bending_rigidity, muscle_stiffness and the tentacle_ fields"
@@ -234,22 +234,22 @@ void refuse_other_models_fields(const Reader& r, jellyfish::ElasticModel model) 
 }
 
 /// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
-jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::TankSpec& t) {
+jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling::TankSpec& t) {
   const Reader r(c, jellyfish_scene());
   jellyfish::JellyfishSpec j;
   j.aperture_centre_m = r.vec2("jellyfish.position");
   if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
         j.aperture_centre_m.y < t.height_m))
-    throw InputError("field 'jellyfish.position' = [" + io::format_number(j.aperture_centre_m.x) + ", " +
-                     io::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
-                     io::format_number(t.width_m) + "] x [0, " + io::format_number(t.height_m) + "]");
+    throw InputError("field 'jellyfish.position' = [" + config::format_number(j.aperture_centre_m.x) + ", " +
+                     config::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     config::format_number(t.width_m) + "] x [0, " + config::format_number(t.height_m) + "]");
   j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
   j.diameter_m = r.number("jellyfish.diameter");
   j.height_m = r.number("jellyfish.height");
   j.tentacle_length_m = r.number("jellyfish.tentacle_length");
   if (j.tentacle_length_m > 0 && j.tentacle_length_m < kMinBodyLength)
-    throw InputError("field 'jellyfish.tentacle_length' = " + io::format_number(j.tentacle_length_m) +
-                     " is out of range: 0 (no tentacles) or [" + io::format_number(kMinBodyLength) + ", 100] m");
+    throw InputError("field 'jellyfish.tentacle_length' = " + config::format_number(j.tentacle_length_m) +
+                     " is out of range: 0 (no tentacles) or [" + config::format_number(kMinBodyLength) + ", 100] m");
   j.thickness_m = r.number("jellyfish.thickness");
   j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
                                                                        : jellyfish::UmbrellaModel::angular;
@@ -301,10 +301,10 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
 /// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template), rigid
 /// obstacles (circle, box, polygon), each with an optional prescribed path, and IB2d structures;
 /// each type's fields are a table (scene/objects.hpp).
-void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
+void read_objects(const config::Config& c, jellyfish::SwimSettings& s) {
   const std::size_t count = c.array_size("objects");
   for (std::size_t k = 0; k < count; ++k) {
-    io::Config o = c.element("objects", k);
+    config::Config o = c.element("objects", k);
     const std::string where = "objects[" + std::to_string(k) + "]";
     if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box, polygon or ib2d)");
     std::string type;
@@ -317,7 +317,7 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
     try {
       if (type == "jellyfish") {
         o.erase("type");
-        io::Config jc = c;
+        config::Config jc = c;
         jc.merge(o.nested_under("jellyfish"));
         s.school.push_back(read_jellyfish(jc, s.tank));
       } else if (type == "ib2d") {
@@ -351,7 +351,7 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
     for (const auto& [field, value] : sizes)
       if (value > diagonal)
         throw InputError("jellyfish " + std::to_string(k + 1) + " cannot fit in the tank: its " + field + " " +
-                         io::format_number(value) + " m exceeds the tank's diagonal " + io::format_number(diagonal) +
+                         config::format_number(value) + " m exceeds the tank's diagonal " + config::format_number(diagonal) +
                          " m (field 'jellyfish." + field + "')");
   }
   const jellyfish::MemoryEstimate e = jellyfish::estimate_memory(s);
@@ -366,19 +366,19 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
 
 }  // namespace
 
-jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
+jellyfish::SwimSettings read_swim_settings(const config::Config& c) {
   const Reader r(c, jellyfish_scene());
   r.validate_all();
   jellyfish::SwimSettings s;
   s.duration_s = r.number("duration");
   s.frame_interval_s = r.number("output.frame_interval");
   if (s.frame_interval_s > s.duration_s)
-    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
-                     " is out of range (0, duration = " + io::format_number(s.duration_s) + "]");
+    throw InputError("field 'output.frame_interval' = " + config::format_number(s.frame_interval_s) +
+                     " is out of range (0, duration = " + config::format_number(s.duration_s) + "]");
   if (!(s.duration_s / s.frame_interval_s <= kMaxFrames))
-    throw InputError("fields 'duration' = " + io::format_number(s.duration_s) + " s and 'output.frame_interval' = " +
-                     io::format_number(s.frame_interval_s) + " s ask for " + io::format_number(s.duration_s / s.frame_interval_s) +
-                     " frames; at most " + io::format_number(kMaxFrames) + " (raise the interval or shorten the run)");
+    throw InputError("fields 'duration' = " + config::format_number(s.duration_s) + " s and 'output.frame_interval' = " +
+                     config::format_number(s.frame_interval_s) + " s ask for " + config::format_number(s.duration_s / s.frame_interval_s) +
+                     " frames; at most " + config::format_number(kMaxFrames) + " (raise the interval or shorten the run)");
 
   coupling::TankSpec& t = s.tank;
   t.width_m = r.number("tank.width");
@@ -425,11 +425,11 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   k.min_time_step_s = r.number("coupling.min_dt");
   // Contradictions are input errors, not a numerical instability at t = 0.
   if (!(k.min_time_step_s < k.max_time_step_s))
-    throw InputError("field 'coupling.min_dt' = " + io::format_number(k.min_time_step_s) +
-                     " must be below coupling.max_dt = " + io::format_number(k.max_time_step_s));
+    throw InputError("field 'coupling.min_dt' = " + config::format_number(k.min_time_step_s) +
+                     " must be below coupling.max_dt = " + config::format_number(k.max_time_step_s));
   if (!(s.frame_interval_s >= k.min_time_step_s))
-    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
-                     " is below coupling.min_dt = " + io::format_number(k.min_time_step_s) +
+    throw InputError("field 'output.frame_interval' = " + config::format_number(s.frame_interval_s) +
+                     " is below coupling.min_dt = " + config::format_number(k.min_time_step_s) +
                      ": steps land on every frame, so each would be shorter than the smallest allowed");
   k.krylov_tolerance = r.number("coupling.krylov_tolerance");
   k.krylov_max_iterations = static_cast<int>(r.integer("coupling.krylov_max_iterations"));
@@ -458,11 +458,11 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
 }
 
 
-double read_picture_zoom(const io::Config& c) {
+double read_picture_zoom(const config::Config& c) {
   const double zoom = Reader(c, jellyfish_scene()).number("output.picture_zoom");
   if (zoom != 0.0 && zoom < kMinPictureZoom)
-    throw InputError("field 'output.picture_zoom' = " + io::format_number(zoom) + " is out of range: 0 (the whole " +
-                     "tank) or [" + io::format_number(kMinPictureZoom) + ", 1000] bell diameters");
+    throw InputError("field 'output.picture_zoom' = " + config::format_number(zoom) + " is out of range: 0 (the whole " +
+                     "tank) or [" + config::format_number(kMinPictureZoom) + ", 1000] bell diameters");
   return zoom;
 }
 

@@ -7,7 +7,7 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 
 using namespace param;
 
@@ -101,7 +101,7 @@ const ParameterTable& render_parameters() {
   return table;
 }
 
-render::PipelineSettings read_render_settings(const io::Config& c) {
+render::PipelineSettings read_render_settings(const config::Config& c) {
   const Reader r(c, render_parameters());
   render::PipelineSettings s;
   geometry::GeometrySettings& g = s.geometry;

@@ -26,7 +26,7 @@ struct SwimOutputOptions {
   bool vtk = false;
   bool record_tracers = false;  ///< keep every frame's tracer positions (the animation's marine snow)
 };
-SwimOutputOptions read_output_options(const io::Config& c);
+SwimOutputOptions read_output_options(const config::Config& c);
 
 struct SwimRecording {
   std::vector<double> frame_times;                  ///< s, one per recorded frame
