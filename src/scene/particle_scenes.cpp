@@ -16,9 +16,10 @@ Parameter rule(std::string key, Type type, std::string unit, Range range, std::s
   return {std::move(key), type, "", std::move(unit), range, std::move(choices), 0, std::move(description)};
 }
 
-ParameterTable make_rules() {
+/// The time loop, the outputs, the elastic bar and collisions.
+std::vector<Parameter> time_output_and_bar_rules() {
   const Range positive = Range::positive(), non_negative = Range::non_negative();
-  std::vector<Parameter> p{
+  return {
       rule("duration", Type::number, "s", positive, "simulated time"),
       rule("time.integrator", Type::choice, "", {}, "time integrator (docs/integrators.md)", ode::integrator_names()),
       rule("time.dt", Type::number, "s", positive, "step; the first step when adaptive; at most the duration"),
@@ -52,6 +53,13 @@ ParameterTable make_rules() {
       rule("collision.trap_radius", Type::number, "m", Range::closed(0.0, 1.0),
            "a second boundary this close makes a colliding particle trapped (0: off)"),
       rule("run.threads", Type::integer, "", Range::closed(0, 64), "threads of the SPH loops; 0: one per core"),
+  };
+}
+
+/// The SPH fluid box (thesis ch. 5).
+std::vector<Parameter> fluid_rules() {
+  const Range positive = Range::positive(), non_negative = Range::non_negative();
+  return {
       rule("box.min", Type::vec2, "m", {}, "lower-left corner of the fluid box"),
       rule("box.max", Type::vec2, "m", {}, "upper-right corner of the fluid box (above and right of box.min)"),
       rule("fluid.smoothing_radius", Type::number, "m", positive, "SPH smoothing radius h"),
@@ -66,6 +74,13 @@ ParameterTable make_rules() {
       rule("fluid.velocity_ratio", Type::number, "", non_negative, "thermalised: velocity noise"),
       rule("fluid.seed", Type::integer, "", Range::closed(0, 4611686018427387904.0), "thermalised: random seed"),
       rule("fluid.gravity", Type::vec2, "m/s²", {}, "gravity on the particles"),
+  };
+}
+
+/// The mosquito larva, the walls, particles and emitter, and the studies.
+std::vector<Parameter> larva_and_probe_rules() {
+  const Range positive = Range::positive(), non_negative = Range::non_negative();
+  return {
       rule("larva.centre", Type::vec2, "m", {}, "centre of the larva at rest"),
       rule("larva.length", Type::number, "m", positive, "larva length"),
       rule("larva.height", Type::number, "m", positive, "larva height"),
@@ -93,6 +108,12 @@ ParameterTable make_rules() {
            "integrator-cost: the error controls compared (embedded only for methods with a pair)",
            {"embedded", "step-doubling"}),
   };
+}
+
+ParameterTable make_rules() {
+  std::vector<Parameter> p;
+  for (auto section : {time_output_and_bar_rules, fluid_rules, larva_and_probe_rules})
+    for (Parameter& q : section()) p.push_back(std::move(q));
   return ParameterTable("particle", "", std::move(p));
 }
 
