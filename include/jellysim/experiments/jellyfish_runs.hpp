@@ -10,6 +10,7 @@
 #include "jellysim/io/checkpoint.hpp"
 #include "jellysim/io/output.hpp"
 #include "jellysim/jellyfish/metrics.hpp"
+#include "jellysim/jellyfish/swim_record.hpp"
 #include "jellysim/jellyfish/swim_simulation.hpp"
 #include "jellysim/render/field_picture.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -28,17 +29,9 @@ struct SwimOutputOptions {
 };
 SwimOutputOptions read_output_options(const config::Config& c);
 
-struct SwimRecording {
-  std::vector<double> frame_times;                  ///< s, one per recorded frame
-  std::vector<jellyfish::SliceFrame> frames;        ///< the first jellyfish (metrics.csv)
+/// A run's record (jellyfish/swim_record.hpp: frames, forces, metrics) and its step statistics.
+struct SwimRecording : jellyfish::SwimRecord {
   jellyfish::SwimRunStats stats;
-  std::vector<jellyfish::MetricsRow> metrics;
-  std::vector<std::vector<jellyfish::SliceFrame>> others;        ///< jellyfish 2, 3, …
-  std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
-  std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
-  std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
-  std::vector<std::vector<Vec2>> structure_centroids;  ///< per frame, per IB2d structure: centroid without targets, m
-  std::vector<std::vector<Vec2>> tracers;           ///< per frame, when SwimOutputOptions::record_tracers
 };
 
 /// Checkpoints of a swim (issue 23): io/checkpoint.hpp's file, written at the first frame at or
