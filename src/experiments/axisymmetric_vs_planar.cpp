@@ -97,12 +97,7 @@ void write_wakes_picture(const io::OutputDir& out, std::vector<RunResult>& resul
     r.picture.state = &r.flow;
     panels.push_back(r.picture);
   }
-  render::FieldPictureOptions po;
-  po.quantity = render::FieldQuantity::vorticity;
-  po.arrows = false;
-  po.colour_range_max = 10.0;  // 1/s: the same scale in both panels
-  if (!panels.empty())
-    out.write_text("wakes.png", render::field_panels_png(panels, static_cast<int>(panels.size()), po));
+  write_vorticity_panels(out, "wakes.png", panels);
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_axisymmetric_vs_planar(const Context& ctx) {

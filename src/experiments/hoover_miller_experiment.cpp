@@ -61,12 +61,7 @@ render::FieldPicture bell_picture(const jellyfish::SwimSimulation& sim, const Ho
 void write_strokes_picture(const io::OutputDir& out, std::vector<render::FieldPicture>& strokes,
                            const std::vector<fluid::FlowState>& stroke_flows) {
   for (std::size_t k = 0; k < strokes.size(); ++k) strokes[k].state = &stroke_flows[k];
-  render::FieldPictureOptions po;
-  po.quantity = render::FieldQuantity::vorticity;
-  po.arrows = false;
-  po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
-  if (!strokes.empty())
-    out.write_text("strokes.png", render::field_panels_png(strokes, static_cast<int>(strokes.size()), po));
+  write_vorticity_panels(out, "strokes.png", strokes);
 }
 
 /// The centroid's height from its start and the margin gap over time (trajectory.png).

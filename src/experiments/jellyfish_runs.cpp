@@ -298,6 +298,15 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
   return p;
 }
 
+void write_vorticity_panels(const io::OutputDir& out, const std::string& name,
+                            const std::vector<render::FieldPicture>& panels) {
+  render::FieldPictureOptions po;
+  po.quantity = render::FieldQuantity::vorticity;
+  po.arrows = false;
+  po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
+  if (!panels.empty()) out.write_text(name, render::field_panels_png(panels, static_cast<int>(panels.size()), po));
+}
+
 SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
                        const io::OutputDir* out, const sim::ProgressCallback& progress,
                        const Checkpointing* checkpoints) {

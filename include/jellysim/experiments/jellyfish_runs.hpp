@@ -76,5 +76,8 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
 
 /// The 2D picture of one state (springs, muscles, tracers over speed or vorticity).
 render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double zoom_diameters);
+/// Panels side by side on one vorticity scale (±10/s, no arrows) into `name` (nothing without panels).
+void write_vorticity_panels(const io::OutputDir& out, const std::string& name,
+                            const std::vector<render::FieldPicture>& panels);
 
 }  // namespace jellysim::experiments
