@@ -34,9 +34,9 @@ namespace {
 using namespace jellysim;
 
 /// The built-in scene, optionally with a scene file of the repository laid over it, for one cycle.
-io::Config one_cycle(const char* overlay) {
-  io::Config c = scene::builtin_jellyfish_scene();
-  if (overlay) c.merge(io::Config::parse(experiments::embedded_text(overlay), overlay));
+config::Config one_cycle(const char* overlay) {
+  config::Config c = scene::builtin_jellyfish_scene();
+  if (overlay) c.merge(config::Config::parse(experiments::embedded_text(overlay), overlay));
   c.set("tank.tracers_per_side=0");
   c.set("duration=" + io::format_double(1.0 / 0.7));
   c.set("output.frame_interval=0.1");
@@ -60,7 +60,7 @@ void report(benchmark::State& state, const jellyfish::SwimSettings& s) {
 }
 
 void BM_Swim(benchmark::State& state, const char* overlay, bool semi_implicit) {
-  io::Config c = one_cycle(overlay);
+  config::Config c = one_cycle(overlay);
   c.set(std::string("coupling.scheme=") + (semi_implicit ? "semi-implicit" : "explicit"));
   if (!semi_implicit) c.set("coupling.max_dt=0.0025");
   report(state, scene::read_swim_settings(c));
@@ -72,7 +72,7 @@ BENCHMARK_CAPTURE(BM_Swim, thesis_semi_implicit, "scenes/jellyfish-thesis.toml",
 BENCHMARK_CAPTURE(BM_Swim, fine_semi_implicit, "scenes/jellyfish-fine.toml", true)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_Geometry(benchmark::State& state, const char* geometry, bool fixed_step) {
-  io::Config c = one_cycle(nullptr);
+  config::Config c = one_cycle(nullptr);
   c.set(std::string("tank.geometry=\"") + geometry + "\"");
   if (fixed_step) c.set("coupling.max_dt=0.0025");  // below both CFL limits: the same steps
   report(state, scene::read_swim_settings(c));
@@ -84,7 +84,7 @@ BENCHMARK_CAPTURE(BM_Geometry, planar_half_tank_fixed_step, "planar", true)->Uni
 BENCHMARK_CAPTURE(BM_Geometry, axisymmetric_fixed_step, "axisymmetric", true)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_HooverMiller(benchmark::State& state, bool semi_implicit) {
-  io::Config c = experiments::default_config(experiments::find_experiment("hoover-miller"));
+  config::Config c = experiments::default_config(experiments::find_experiment("hoover-miller"));
   c.set("duration=" + std::string(semi_implicit ? "1.0" : "0.01"));
   c.set("output.frame_interval=0.01");
   if (!semi_implicit) {
@@ -100,7 +100,7 @@ BENCHMARK_CAPTURE(BM_HooverMiller, semi_implicit, true)->Unit(benchmark::kSecond
 BENCHMARK_CAPTURE(BM_HooverMiller, explicit_ib2d_step, false)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_MarkerSpaceSolve(benchmark::State& state) {
-  io::Config c = one_cycle("scenes/jellyfish-fine.toml");
+  config::Config c = one_cycle("scenes/jellyfish-fine.toml");
   const std::string cells = std::to_string(state.range(0));
   c.set("tank.cells=[" + cells + ", " + cells + "]");
   c.set(std::string("coupling.preconditioner=") + (state.range(1) ? "mobility" : "none"));

@@ -42,8 +42,8 @@ void write(const fs::path& path, std::string_view text) {
 
 /// The built-in jellyfish scene with `overlay` merged onto it, read and validated.
 void read_scene(std::string_view overlay) {
-  io::Config c = scene::builtin_jellyfish_scene();
-  c.merge(io::Config::parse(overlay, "fuzz.toml"));
+  config::Config c = scene::builtin_jellyfish_scene();
+  c.merge(config::Config::parse(overlay, "fuzz.toml"));
   scene::read_swim_settings(c);
 }
 

@@ -181,12 +181,12 @@ Scene load_scene(const py::object& source, const py::object& overrides) {
   if (py::isinstance<py::str>(source)) {
     const std::string text = source.cast<std::string>();
     if (text.find_first_of("=\n") != std::string::npos) {
-      const io::Config toml = io::Config::parse(text, "scene text");
+      const config::Config toml = config::Config::parse(text, "scene text");
       return resolve_scene(&toml, "scene text", sets);
     }
   }
   const std::string path = path_text(source);
-  const io::Config file = io::Config::load(path);
+  const config::Config file = config::Config::load(path);
   return resolve_scene(&file, path, sets);
 }
 
@@ -225,7 +225,7 @@ py::dict run_experiment(const std::string& name, const py::object& out, const py
   const experiments::Experiment& e = experiment_named(name);
   scene::ConfigSources sources{{}, scene.is_none() ? "" : path_text(scene), "", false,
                                override_assignments(overrides, kwargs)};
-  if (!scene.is_none()) sources.scene_file = io::Config::load(sources.scene_name);
+  if (!scene.is_none()) sources.scene_file = config::Config::load(sources.scene_name);
   PythonProgress reports(progress);
   PythonProgress* r = &reports;  // the callbacks hold a pointer: no Python object is copied without the GIL
   experiments::Context ctx{

@@ -20,6 +20,14 @@ namespace {
 /// simulate's frame tolerance for a run of this duration (SwimSimulation::run).
 double frame_tolerance(double duration_s) { return 1e-12 * std::max(1.0, duration_s); }
 
+/// simulate's clock (frame n at n·interval, ending on the frame nearest the duration) for a run to
+/// duration_s, with the frames recorded so far counted as emitted.
+sim::FrameClock simulate_clock(double interval_s, double duration_s, std::int64_t frames_emitted) {
+  sim::FrameClock clock(interval_s, duration_s, frame_tolerance(duration_s), sim::FrameClock::Ending::nearest_frame);
+  for (std::int64_t k = 0; k < frames_emitted; ++k) clock.frame_emitted();
+  return clock;
+}
+
 /// The settings simulate runs: without pictures or VTK files the tracers are not advected
 /// (experiments::run_swim); they never change the markers.
 jellyfish::SwimSettings run_settings(const Scene& scene) {
@@ -30,7 +38,7 @@ jellyfish::SwimSettings run_settings(const Scene& scene) {
 
 }  // namespace
 
-Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
+Scene resolve_scene(const config::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets) {
   scene::ConfigSources sources{{}, overlay_name, "jellyfish", false, sets};
   if (overlay) sources.scene_file = *overlay;
   Scene scene{scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene"), {}, {}};
@@ -64,10 +72,12 @@ std::string Simulation::step_toward(double frame_time) {
 }
 
 void Simulation::step() {
+  // One step toward the next frame on simulate's clock, the frame recorded when it is due.
   const double interval = scene_.settings.frame_interval_s;
-  const double frame_time = static_cast<double>(frames_emitted_) * interval;
-  if (std::string failure = step_toward(frame_time); !failure.empty()) throw RunError(failure);
-  if (sim_->time_s() >= frame_time - frame_tolerance(frame_time)) record_frame();
+  const sim::FrameClock clock =
+      simulate_clock(interval, static_cast<double>(frames_emitted_) * interval, frames_emitted_);
+  if (std::string failure = step_toward(clock.target()); !failure.empty()) throw RunError(failure);
+  if (clock.due(sim_->time_s())) record_frame();
 }
 
 bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
@@ -88,8 +98,7 @@ bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
   const auto last = static_cast<std::int64_t>(std::llround(requested / interval));
   if (last < frames_emitted_) return true;
   const double duration = static_cast<double>(last) * interval;
-  sim::FrameClock clock(interval, duration, frame_tolerance(duration), sim::FrameClock::Ending::nearest_frame);
-  for (std::int64_t k = 0; k < frames_emitted_; ++k) clock.frame_emitted();
+  sim::FrameClock clock = simulate_clock(interval, duration, frames_emitted_);
   sim::ClockedRun loop;
   loop.time = [this] { return sim_->time_s(); };
   bool stopped = false;

@@ -21,7 +21,7 @@ namespace jellysim::python {
 
 /// A resolved and validated jellyfish scene: what `jellysim simulate` runs.
 struct Scene {
-  io::Config config;
+  config::Config config;
   jellyfish::SwimSettings settings;
   experiments::SwimOutputOptions output;
 };
@@ -30,7 +30,7 @@ struct Scene {
 /// `scene`, if given, must be "jellyfish") and the key=value overrides, resolved by
 /// scene::resolve_config and validated as `simulate` validates them; throws InputError with the
 /// CLI's messages.
-Scene resolve_scene(const io::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets);
+Scene resolve_scene(const config::Config* overlay, const std::string& overlay_name, const std::vector<std::string>& sets);
 
 class Simulation {
  public:

@@ -73,9 +73,9 @@ CLI::Validator finite_range(double lo, double hi) {
           end = 0;
         }
         if (end == text.size() && value >= lo && value <= hi) return {};
-        return "'" + text + "' is not a number in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]";
+        return "'" + text + "' is not a number in [" + js::config::format_number(lo) + ", " + js::config::format_number(hi) + "]";
       },
-      "NUMBER in [" + js::io::format_number(lo) + ", " + js::io::format_number(hi) + "]", "finite range");
+      "NUMBER in [" + js::config::format_number(lo) + ", " + js::config::format_number(hi) + "]", "finite range");
 }
 
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
@@ -240,7 +240,7 @@ js::sim::ProgressCallback make_progress(const std::string& mode) {
 
 /// A scene file given to a command: `path`'s configuration, and the kind it must be (none: any).
 struct SceneFile {
-  std::optional<js::io::Config> config;
+  std::optional<js::config::Config> config;
   std::string path;
   std::string expected_kind{};
 };
@@ -297,9 +297,9 @@ int run_checkpointed_simulation(const std::string& command, const std::string& s
   if (o.duration) how.duration = js::io::format_double(*o.duration);
   SceneFile scene{{}, scene_path};
   if (!scene_path.empty()) {
-    how.scene_text = js::io::Config::read_scene_text(scene_path);
+    how.scene_text = js::config::Config::read_scene_text(scene_path);
     how.scene_source = scene_path;
-    scene.config = js::io::Config::parse(how.scene_text, scene_path);
+    scene.config = js::config::Config::parse(how.scene_text, scene_path);
     if (!scene.config->has("scene") || scene.config->string("scene") != "jellyfish")
       throw js::InputError("--checkpoint-every: " + scene_path + " is not a jellyfish scene (scene = \"jellyfish\"); "
                            "only jellyfish simulations write checkpoints");
@@ -323,7 +323,7 @@ int resume_simulation(const std::string& command, const std::string& dir, const 
   if (!c.duration.empty()) o.duration = std::strtod(c.duration.c_str(), nullptr);  // written by format_double: exact
   o.resume = true;
   SceneFile scene{{}, c.scene_source};
-  if (!c.scene_text.empty()) scene.config = js::io::Config::parse(c.scene_text, c.scene_source);
+  if (!c.scene_text.empty()) scene.config = js::config::Config::parse(c.scene_text, c.scene_source);
   auto checkpoints = std::make_shared<js::experiments::Checkpointing>();
   checkpoints->how = std::move(c);
   checkpoints->resume = true;
@@ -336,7 +336,7 @@ int run_scene(const std::string& scene_path, const RunOptions& o, const std::str
   SceneFile scene{{}, scene_path};
   std::string name = default_scene;
   if (!scene_path.empty()) {
-    scene.config = js::io::Config::load(scene_path);
+    scene.config = js::config::Config::load(scene_path);
     if (!scene.config->has("scene"))
       throw js::InputError(scene_path + ": missing field 'scene' (e.g. scene = \"swinging-bar\")");
     name = scene.config->string("scene");
@@ -388,7 +388,7 @@ int list_definitions(const std::string& name) {
       if (line.starts_with("[")) in_render = line.starts_with("[render]") || line.starts_with("[render.");
       if (!in_render) kept += line + "\n";
     }
-    const js::io::Config resolved = js::experiments::default_config(e);
+    const js::config::Config resolved = js::experiments::default_config(e);
     text = kept + "\n# The 3D pipeline's [render] section: every field with this scene's value (docs/parameters.md).\n" +
            js::scene::render_parameters().scene_toml(&resolved);
   }
@@ -459,8 +459,8 @@ std::string read_text_file(const std::string& path) {
 /// Loads the scene like `simulate` does (built-in jellyfish scene, scene file, --set) and runs the viewer.
 int run_view(ViewCommand& v) {
   js::scene::ConfigSources sources{{}, v.scene_path, "jellyfish", false, v.sets};
-  if (!v.scene_path.empty()) sources.scene_file = js::io::Config::load(v.scene_path);
-  const js::io::Config config =
+  if (!v.scene_path.empty()) sources.scene_file = js::config::Config::load(v.scene_path);
+  const js::config::Config config =
       js::scene::resolve_config(js::scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
   const js::jellyfish::SwimSettings settings = js::scene::read_swim_settings(config);
   const std::string name = v.scene_path.empty() ? "built-in jellyfish" : v.scene_path;
@@ -623,7 +623,7 @@ std::function<int()> define_sweep(CLI::App& cmd) {
       s->options.sets.push_back("sweep.frequencies=[" + list + "]");
     }
     SceneFile scene{{}, s->scene_path};
-    if (!s->scene_path.empty()) scene.config = js::io::Config::load(s->scene_path);
+    if (!s->scene_path.empty()) scene.config = js::config::Config::load(s->scene_path);
     return run_experiment(js::experiments::find_experiment("sweep"), scene, s->options);
   };
 }
@@ -651,7 +651,7 @@ std::function<int()> define_experiment(CLI::App& cmd) {
       if (e.base_path != "scenes/jellyfish.toml")
         throw js::InputError("experiment '" + s->name + "' takes no scene file ('" + s->scene_path +
                              "'): only experiments on the jellyfish scene do");
-      scene.config = js::io::Config::load(s->scene_path);
+      scene.config = js::config::Config::load(s->scene_path);
     }
     return run_experiment(e, scene, s->options);
   };

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace jellysim::io {
+namespace jellysim::config {
 
 std::string format_number(double v) {
   std::ostringstream s;
@@ -408,4 +408,4 @@ std::string Config::to_toml() const {
   return s.str();
 }
 
-}  // namespace jellysim::io
+}  // namespace jellysim::config

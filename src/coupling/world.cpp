@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "jellysim/core/state_archive.hpp"
-#include "jellysim/elastic/mirror.hpp"
-#include "jellysim/fluid/mirror.hpp"
+#include "jellysim/elastic/body_mirror.hpp"
+#include "jellysim/fluid/flow_mirror.hpp"
 
 namespace jellysim::coupling {
 

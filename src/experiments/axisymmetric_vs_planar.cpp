@@ -29,11 +29,11 @@ struct Comparison {
   int cycles = 4;
 };
 
-Comparison read_comparison(io::Config c) {
+Comparison read_comparison(config::Config c) {
   Comparison run;
   run.cycles = scene::read_axisymmetric_vs_planar_cycles(c);
   const double frequency = scene::Reader(c, scene::jellyfish_scene()).number("jellyfish.frequency");
-  c.set("duration=" + io::format_number(run.cycles / frequency));
+  c.set("duration=" + config::format_number(run.cycles / frequency));
   for (std::size_t g = 0; g < 2; ++g) {
     c.set(std::string("tank.geometry=\"") + kGeometries[g].name + "\"");
     run.settings[g] = scene::read_swim_settings(c);
@@ -90,6 +90,16 @@ double position_after(const std::vector<jellyfish::MetricsRow>& m, int k, double
   return nearest->position;
 }
 
+// wakes.png: the vorticity at the end of each run, side by side on one colour scale.
+void write_wakes_picture(const io::OutputDir& out, std::vector<RunResult>& results) {
+  std::vector<render::FieldPicture> panels;
+  for (RunResult& r : results) {
+    r.picture.state = &r.flow;
+    panels.push_back(r.picture);
+  }
+  write_vorticity_panels(out, "wakes.png", panels);
+}
+
 std::function<Outcome(const io::OutputDir&)> prepare_axisymmetric_vs_planar(const Context& ctx) {
   const Comparison run = read_comparison(ctx.config);
   return [run, ctx](const io::OutputDir& out) {
@@ -142,17 +152,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_axisymmetric_vs_planar(cons
       fig["cost_per_step_ratio"] = fig["axisymmetric"]["wall_seconds_per_step"].get<double>() /
                                    std::max(fig["planar"]["wall_seconds_per_step"].get<double>(), 1e-300);
     }
-    std::vector<render::FieldPicture> panels;
-    for (RunResult& r : results) {
-      r.picture.state = &r.flow;
-      panels.push_back(r.picture);
-    }
-    render::FieldPictureOptions po;
-    po.quantity = render::FieldQuantity::vorticity;
-    po.arrows = false;
-    po.colour_range_max = 10.0;  // 1/s: the same scale in both panels
-    if (!panels.empty())
-      out.write_text("wakes.png", render::field_panels_png(panels, static_cast<int>(panels.size()), po));
+    write_wakes_picture(out, results);
     write_summary(out, "experiment axisymmetric-vs-planar", ctx.config, fig, failure);
     return Outcome{failure};
   };

@@ -46,7 +46,7 @@ std::string json_cell(const nlohmann::ordered_json& v) {
 /// An override's cell: a string without its quotes, anything else as written in TOML.
 std::string value_cell(const std::optional<std::string>& literal) {
   if (!literal) return "";
-  if (literal->size() >= 2 && literal->front() == '"') return io::Config::parse("v = " + *literal, "plan").string("v");
+  if (literal->size() >= 2 && literal->front() == '"') return config::Config::parse("v = " + *literal, "plan").string("v");
   return *literal;
 }
 
@@ -60,9 +60,9 @@ std::string describe_run(const BatchPlan& plan, std::size_t k) {
 
 /// The built-in jellyfish scene, the plan's scene file, its duration, [set] and the command line's
 /// --set (scene::resolve_config; the plan's duration is its first override, so a --set overrides it).
-io::Config base_config(const BatchPlan& plan, const std::vector<std::string>& sets) {
+config::Config base_config(const BatchPlan& plan, const std::vector<std::string>& sets) {
   scene::ConfigSources sources{{}, plan.scene.string(), "jellyfish", true};
-  if (!plan.scene.empty()) sources.scene_file = io::Config::load(plan.scene);
+  if (!plan.scene.empty()) sources.scene_file = config::Config::load(plan.scene);
   if (plan.duration) sources.sets.push_back("duration=" + io::format_double(*plan.duration));
   sources.sets.insert(sources.sets.end(), plan.shared.begin(), plan.shared.end());
   sources.sets.insert(sources.sets.end(), sets.begin(), sets.end());
@@ -156,8 +156,8 @@ Batch::Batch(BatchPlan plan, const std::vector<std::string>& sets, fs::path out)
   resumed_.resize(size());
 }
 
-io::Config Batch::config(std::size_t k) const {
-  io::Config c = base_;
+config::Config Batch::config(std::size_t k) const {
+  config::Config c = base_;
   const std::vector<std::optional<std::string>> cells = plan_.run(k);
   for (std::size_t i = 0; i < plan_.keys.size(); ++i)
     if (cells[i]) c.set(plan_.keys[i] + "=" + *cells[i]);

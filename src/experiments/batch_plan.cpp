@@ -189,7 +189,7 @@ BatchPlan read_batch_plan(const std::filesystem::path& file) {
   // A plan is a small regular file, like a scene file (never a pipe or a device; at most 1 MiB).
   std::string text;
   try {
-    text = io::read_regular_file(file, io::Config::kMaxSceneFileBytes, true);
+    text = io::read_regular_file(file, config::Config::kMaxSceneFileBytes, true);
   } catch (const InputError& e) {
     throw InputError("plan file: " + std::string(e.what()) + " (a plan is a regular file, like a scene file)");
   }

@@ -17,7 +17,7 @@
 namespace jellysim::experiments {
 namespace {
 
-using io::format_number;
+using config::format_number;
 
 struct Grid {
   int nx = 0, ny = 0;
@@ -73,7 +73,7 @@ double structure_width(const jellyfish::Ib2dObjectSpec& s) {
 }
 
 /// Refuses scenes whose markers would not follow the grid.
-void refuse_fixed_spacing(const io::Config& c) {
+void refuse_fixed_spacing(const config::Config& c) {
   if (c.number("jellyfish.spacing") > 0)
     throw InputError("field 'jellyfish.spacing' = " + format_number(c.number("jellyfish.spacing")) +
                      ": the convergence study lets the markers follow the grid (Peskin's rule); set it to 0");
@@ -99,14 +99,14 @@ void read_swimmer(const jellyfish::SwimSettings& s, Study& study) {
   study.bell_width_m = structure_width(s.structures[0]);
 }
 
-Study read_study(const io::Config& config) {
+Study read_study(const config::Config& config) {
   Study study;
   study.grids = parse_grids(config.string("grids"));
   study.cycles = static_cast<int>(config.integer("cycles", 2, 100));
   study.frames_per_cycle = static_cast<int>(config.integer("frames_per_cycle", 4, 1000));
   refuse_fixed_spacing(config);
   for (const Grid& g : study.grids) {
-    io::Config c = config;
+    config::Config c = config;
     c.set("tank.cells=[" + std::to_string(g.nx) + ", " + std::to_string(g.ny) + "]");
     if (study.runs.empty()) read_swimmer(scene::read_swim_settings(c), study);
     // Cycles' ends are frames: the frame interval divides the period.

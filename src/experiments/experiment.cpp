@@ -128,11 +128,11 @@ std::string definition_text(std::string_view path) {
   return std::string(embedded_text(path));
 }
 
-io::Config default_config(const Experiment& experiment) {
-  auto parse = [](const std::string& path) { return io::Config::parse(definition_text(path), "built-in " + path); };
-  io::Config own = parse(experiment.definition_path);
+config::Config default_config(const Experiment& experiment) {
+  auto parse = [](const std::string& path) { return config::Config::parse(definition_text(path), "built-in " + path); };
+  config::Config own = parse(experiment.definition_path);
   if (experiment.base_path.empty() && !experiment.renders) return own;
-  io::Config base = experiment.base_path.empty() ? scene::render_parameters().defaults() : parse(experiment.base_path);
+  config::Config base = experiment.base_path.empty() ? scene::render_parameters().defaults() : parse(experiment.base_path);
   if (!experiment.base_overlay_path.empty()) base.merge(parse(experiment.base_overlay_path));
   if (experiment.renders && !experiment.base_path.empty()) base.extend(scene::render_parameters().defaults());
   base.extend(own);
@@ -177,7 +177,7 @@ Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function
   }
 }
 
-void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
+void write_summary(const io::OutputDir& out, const std::string& command, const config::Config& config,
                    const nlohmann::ordered_json& figures, const std::string& failure) {
   nlohmann::ordered_json summary;
   summary["jellysim_version"] = JELLYSIM_VERSION;

@@ -52,7 +52,7 @@ struct StudySettings {
 };
 
 /// The scene's fields (checked against its table, scene/experiment_scenes.hpp) as the study's settings.
-StudySettings read_settings(const io::Config& c) {
+StudySettings read_settings(const config::Config& c) {
   const scene::IntegratorOrderScene scene = scene::read_integrator_order(c);
   StudySettings s;
   s.problem.point_mass = scene.point_mass;

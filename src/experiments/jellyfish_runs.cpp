@@ -237,7 +237,7 @@ double next_checkpoint_time(double t, double every) { return (std::floor(t / eve
 
 }  // namespace
 
-SwimOutputOptions read_output_options(const io::Config& c) {
+SwimOutputOptions read_output_options(const config::Config& c) {
   const scene::Reader r(c, scene::jellyfish_scene());
   SwimOutputOptions o;
   o.pictures = r.boolean("output.pictures");
@@ -298,6 +298,15 @@ render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double z
   return p;
 }
 
+void write_vorticity_panels(const io::OutputDir& out, const std::string& name,
+                            const std::vector<render::FieldPicture>& panels) {
+  render::FieldPictureOptions po;
+  po.quantity = render::FieldQuantity::vorticity;
+  po.arrows = false;
+  po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
+  if (!panels.empty()) out.write_text(name, render::field_panels_png(panels, static_cast<int>(panels.size()), po));
+}
+
 SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutputOptions& options,
                        const io::OutputDir* out, const sim::ProgressCallback& progress,
                        const Checkpointing* checkpoints) {
@@ -341,21 +350,7 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
       [&](const jellyfish::SwimSimulation& s) -> std::string {
         if (files) files->write(s, frame);
         ++frame;
-        rec.frame_times.push_back(s.time_s());
-        if (s.jellyfish_count() > 0) rec.frames.push_back(s.jellyfish().slice_frame(s.time_s()));
-        for (std::size_t j = 1; j < s.jellyfish_count(); ++j) rec.others[j - 1].push_back(s.jellyfish(j).slice_frame(s.time_s()));
-        std::vector<Vec2> forces;
-        std::vector<std::vector<Vec2>> outlines;
-        for (std::size_t o = 0; o < s.obstacle_count(); ++o) {
-          forces.push_back(s.obstacle_force(o));
-          outlines.push_back(s.obstacle_outline(o));
-        }
-        rec.obstacle_forces.push_back(std::move(forces));
-        rec.obstacle_outlines.push_back(std::move(outlines));
-        std::vector<Vec2> centroids;
-        for (std::size_t k = 0; k < s.structure_count(); ++k) centroids.push_back(s.structure_centroid(k));
-        rec.structure_centroids.push_back(std::move(centroids));
-        if (options.record_tracers) rec.tracers.push_back(s.tracers().positions());
+        jellyfish::record_frame(s, options.record_tracers, rec);
         // Never a checkpoint of a state that failed (run() draws it as a last frame).
         if (s.time_s() >= next_checkpoint * (1.0 - 1e-12) && s.check().empty()) write_checkpoint(s);
         return {};
@@ -366,14 +361,9 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
     if (checkpoints->keep_when_whole) write_checkpoint(sim);
     else out->remove(io::kCheckpointName);
   }
-  const jellyfish::MetricsSettings fluid{settings.tank.density_kg_per_m3, std::max(settings.tank.viscosity_m2_per_s, 1e-9)};
-  if (!rec.frames.empty()) rec.metrics = jellyfish::compute_metrics(rec.frames, fluid);
-  for (const auto& frames : rec.others) rec.other_metrics.push_back(jellyfish::compute_metrics(frames, fluid));
   // A metric that is not finite is a divergence too, even where the state stayed finite.
-  for (std::size_t j = 0; j <= rec.other_metrics.size() && rec.stats.failure.empty(); ++j)
-    if (const std::string problem = jellyfish::non_finite_metric(j == 0 ? rec.metrics : rec.other_metrics[j - 1]);
-        !problem.empty())
-      rec.stats.failure = "numerical instability: " + problem + " for jellyfish " + std::to_string(j + 1);
+  const std::string divergence = jellyfish::compute_school_metrics(settings, rec);
+  if (rec.stats.failure.empty()) rec.stats.failure = divergence;
   return rec;
 }
 
@@ -462,32 +452,46 @@ void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::Met
          series("aperture A/A0", [](const auto& r) { return r.aperture_ratio; })});
 }
 
+namespace {
+
+// The run's cost and how it was solved (summary.json's last fields).
+void add_run_figures(nlohmann::ordered_json& j, const jellyfish::SwimSettings& settings, const SwimRecording& rec) {
+  j["simulated_seconds"] = rec.stats.simulated_seconds;
+  j["wall_seconds"] = rec.stats.wall_seconds;
+  j["realtime_factor"] = rec.stats.wall_seconds > 0 ? rec.stats.simulated_seconds / rec.stats.wall_seconds : 0.0;
+  j["steps"] = rec.stats.steps;
+  j["smallest_step"] = rec.stats.smallest_step_s;
+  j["largest_step"] = rec.stats.largest_step_s;
+  j["krylov_iterations"] = rec.stats.krylov_iterations;
+  j["frames"] = rec.frame_times.size();
+  j["markers"] = rec.frames.empty() ? 0 : rec.frames.front().umbrella.size();
+  j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
+  j["fluid_solver"] = settings.tank.solver;
+  j["symmetry"] = rec.stats.mirror_symmetric ? "mirror" : "none";
+  j["half_tank"] = rec.stats.half_tank;
+  if (!rec.stats.symmetry_note.empty()) j["symmetry_note"] = rec.stats.symmetry_note;
+}
+
+}  // namespace
+
 nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, const SwimRecording& rec) {
   nlohmann::ordered_json j;
   j["units"] = {{"length", "m"}, {"time", "s"}, {"velocity", "m/s"}, {"acceleration", "m/s^2"}, {"volume", "m^3"},
                 {"area", "m^2"}, {"thrust", "N"}, {"modulus", "Pa"}};
   if (!settings.school.empty()) {
+    const jellyfish::SwimSummary sum = jellyfish::summarize_swim(settings, rec, rec.stats.simulated_seconds);
     j["bell_height"] = settings.jellyfish().height_m;
     j["bell_diameter"] = settings.jellyfish().diameter_m;
     j["frequency"] = settings.jellyfish().frequency_hz;
-    j["cycles"] = jellyfish::cycles(rec.stats.simulated_seconds, settings.jellyfish().frequency_hz);
-    const double distance = rec.metrics.empty() ? 0.0 : rec.metrics.back().position;
-    const double lateral = rec.metrics.empty() ? 0.0 : rec.metrics.back().lateral;
-    j["distance_travelled"] = distance;
-    j["distance_in_bell_heights"] = distance / settings.jellyfish().height_m;
-    j["lateral_drift"] = lateral;
-    j["mean_speed"] = rec.stats.simulated_seconds > 0 ? distance / rec.stats.simulated_seconds : 0.0;
-    std::vector<double> volume;
-    for (const auto& r : rec.metrics) volume.push_back(r.volume);
-    j["volume_frequency"] = jellyfish::dominant_frequency(volume, settings.frame_interval_s);
-    double vmin = INFINITY, amin = INFINITY;
-    for (const auto& r : rec.metrics) {
-      vmin = std::min(vmin, r.volume_ratio);
-      amin = std::min(amin, r.aperture_ratio);
-    }
-    j["min_volume_ratio"] = rec.metrics.empty() ? 0.0 : vmin;
-    j["min_aperture_ratio"] = rec.metrics.empty() ? 0.0 : amin;
-    j["daniel_distance"] = rec.metrics.empty() ? 0.0 : rec.metrics.back().daniel_position;
+    j["cycles"] = sum.cycles;
+    j["distance_travelled"] = sum.distance_m;
+    j["distance_in_bell_heights"] = sum.distance_m / settings.jellyfish().height_m;
+    j["lateral_drift"] = sum.lateral_drift_m;
+    j["mean_speed"] = sum.mean_speed_m_per_s;
+    j["volume_frequency"] = sum.volume_frequency_hz;
+    j["min_volume_ratio"] = sum.min_volume_ratio;
+    j["min_aperture_ratio"] = sum.min_aperture_ratio;
+    j["daniel_distance"] = sum.daniel_distance_m;
   }
   j["jellyfish_count"] = settings.school.size();
   if (settings.school.size() > 1) {
@@ -504,38 +508,20 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
   if (!settings.obstacles.empty() && !rec.obstacle_forces.empty()) {
     // Mean force over the second half of the run (after the start-up transient).
     nlohmann::ordered_json each = nlohmann::ordered_json::array();
-    for (std::size_t o = 0; o < settings.obstacles.size(); ++o) {
-      Vec2 sum{};
-      std::size_t n = 0;
-      for (std::size_t f = rec.obstacle_forces.size() / 2; f < rec.obstacle_forces.size(); ++f, ++n) sum += rec.obstacle_forces[f][o];
-      const Vec2 mean = n > 0 ? (1.0 / static_cast<double>(n)) * sum : Vec2{};
-      each.push_back({{"name", settings.obstacles[o].name}, {"mean_force", {mean.x, mean.y}}});
-    }
+    const std::vector<Vec2> means = jellyfish::mean_obstacle_forces(rec, settings.obstacles.size());
+    for (std::size_t o = 0; o < settings.obstacles.size(); ++o)
+      each.push_back({{"name", settings.obstacles[o].name}, {"mean_force", {means[o].x, means[o].y}}});
     j["obstacles"] = each;
   }
   j["structure_count"] = settings.structures.size();
   if (!settings.structures.empty() && !rec.structure_centroids.empty()) {
     nlohmann::ordered_json each = nlohmann::ordered_json::array();
-    for (std::size_t k = 0; k < settings.structures.size(); ++k) {
-      const Vec2 moved = rec.structure_centroids.back()[k] - rec.structure_centroids.front()[k];
-      each.push_back({{"name", settings.structures[k].name}, {"centroid_displacement", {moved.x, moved.y}}});
-    }
+    const std::vector<Vec2> moved = jellyfish::structure_displacements(rec, settings.structures.size());
+    for (std::size_t k = 0; k < settings.structures.size(); ++k)
+      each.push_back({{"name", settings.structures[k].name}, {"centroid_displacement", {moved[k].x, moved[k].y}}});
     j["structures"] = each;
   }
-  j["simulated_seconds"] = rec.stats.simulated_seconds;
-  j["wall_seconds"] = rec.stats.wall_seconds;
-  j["realtime_factor"] = rec.stats.wall_seconds > 0 ? rec.stats.simulated_seconds / rec.stats.wall_seconds : 0.0;
-  j["steps"] = rec.stats.steps;
-  j["smallest_step"] = rec.stats.smallest_step_s;
-  j["largest_step"] = rec.stats.largest_step_s;
-  j["krylov_iterations"] = rec.stats.krylov_iterations;
-  j["frames"] = rec.frame_times.size();
-  j["markers"] = rec.frames.empty() ? 0 : rec.frames.front().umbrella.size();
-  j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
-  j["fluid_solver"] = settings.tank.solver;
-  j["symmetry"] = rec.stats.mirror_symmetric ? "mirror" : "none";
-  j["half_tank"] = rec.stats.half_tank;
-  if (!rec.stats.symmetry_note.empty()) j["symmetry_note"] = rec.stats.symmetry_note;
+  add_run_figures(j, settings, rec);
   return j;
 }
 

@@ -29,6 +29,32 @@ void write_chart(const io::OutputDir& out, const std::string& name, render::Char
 
 // ---------------------------------------------------------------- oval membrane (Figs 8.8, 8.9)
 
+// Shapes over time (Fig. 8.8): up to six frames, evenly spread, in a box_m square.
+std::vector<render::Drawing> membrane_shapes(const studies::MembraneRun& run, double box_m) {
+  std::vector<render::Drawing> panels;
+  const std::size_t shown = std::min<std::size_t>(run.frames.size(), 6);
+  for (std::size_t k = 0; k < shown; ++k) {
+    const auto& f = run.frames[shown == 1 ? 0 : k * (run.frames.size() - 1) / (shown - 1)];
+    render::Drawing d;
+    d.caption = "t = " + io::format_double(std::round(f.t * 100) / 100);
+    for (std::size_t i = 0; i < f.points.size(); ++i) d.segments.push_back({f.points[i], f.points[(i + 1) % f.points.size()]});
+    d.marked_points = {Vec2{0, 0}, Vec2{box_m, box_m}};  // keeps the box in view
+    panels.push_back(std::move(d));
+  }
+  return panels;
+}
+
+// The area retained A/A0 over time of a run on a cells x cells grid (Fig. 8.9).
+render::Series area_ratio_series(const studies::MembraneRun& run, std::int64_t cells) {
+  render::Series series;
+  series.label = std::to_string(cells) + " x " + std::to_string(cells);
+  for (const auto& f : run.frames) {
+    series.x.push_back(f.t);
+    series.y.push_back(f.area / run.frames.front().area);
+  }
+  return series;
+}
+
 std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context& ctx) {
   const scene::MembraneScene membrane = scene::read_membrane_scene(ctx.config);
   const studies::OvalMembraneSettings base = membrane.membrane;
@@ -39,18 +65,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
     const double a0 = run.frames.front().area;
     for (const auto& f : run.frames) area.row({f.t, f.area, f.area / a0, f.aspect_ratio});
     out.write_text("area.csv", area.text());
-    // Shapes over time (Fig. 8.8).
-    std::vector<render::Drawing> panels;
-    const std::size_t shown = std::min<std::size_t>(run.frames.size(), 6);
-    for (std::size_t k = 0; k < shown; ++k) {
-      const auto& f = run.frames[shown == 1 ? 0 : k * (run.frames.size() - 1) / (shown - 1)];
-      render::Drawing d;
-      d.caption = "t = " + io::format_double(std::round(f.t * 100) / 100);
-      for (std::size_t i = 0; i < f.points.size(); ++i) d.segments.push_back({f.points[i], f.points[(i + 1) % f.points.size()]});
-      d.marked_points = {Vec2{0, 0}, Vec2{base.box_m, base.box_m}};  // keeps the box in view
-      panels.push_back(std::move(d));
-    }
-    out.write_text("shapes.png", render::drawing_strip_png(panels, 3, "oval membrane (" + base.solver + ")"));
+    out.write_text("shapes.png", render::drawing_strip_png(membrane_shapes(run, base.box_m), 3,
+                                                          "oval membrane (" + base.solver + ")"));
     // Area retained over time (Fig. 8.9) and the refinement study.
     render::ChartSpec chart;
     chart.title = "Oval membrane: area retained (" + base.solver + ")";
@@ -58,12 +74,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
     chart.x_unit = "s";
     chart.y_label = "A / A0";
     if (std::find(refinement.begin(), refinement.end(), base.cells) == refinement.end()) {
-      chart.series.emplace_back();
-      chart.series.back().label = std::to_string(base.cells) + " x " + std::to_string(base.cells);
-      for (const auto& f : run.frames) {
-        chart.series.back().x.push_back(f.t);
-        chart.series.back().y.push_back(f.area / a0);
-      }
+      chart.series.push_back(area_ratio_series(run, base.cells));
     }
     io::CsvWriter refine({"cells", "dt", "area_lost_percent", "final_aspect_ratio"});
     nlohmann::ordered_json refine_timings = nlohmann::ordered_json::array();
@@ -77,12 +88,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_oval_membrane(const Context
       refine.row({static_cast<double>(cells), s.dt_s, lost, r.frames.back().aspect_ratio});
       refine_timings.push_back({{"cells", cells}, {"wall_seconds", r.wall_seconds}});
       study.push_back({{"cells", cells}, {"area_lost_percent", lost}, {"failure", r.failure}});
-      chart.series.emplace_back();
-      chart.series.back().label = std::to_string(cells) + " x " + std::to_string(cells);
-      for (const auto& f : r.frames) {
-        chart.series.back().x.push_back(f.t);
-        chart.series.back().y.push_back(f.area / r.frames.front().area);
-      }
+      chart.series.push_back(area_ratio_series(r, cells));
     }
     out.write_text("refinement.csv", refine.text());
     write_timings(out, {{"refinement", refine_timings}});
@@ -260,6 +266,71 @@ SweepPoint summarise_frequency(const std::vector<SweepRun>& runs, std::size_t fr
   return p;
 }
 
+/// Every run of the sweep on the pool's threads (no more than there are runs); the threads used.
+int run_sweep(const jellyfish::SwimSettings& base, int threads_wanted, std::vector<SweepRun>& runs) {
+  const int threads = std::min(resolve_threads(threads_wanted), static_cast<int>(runs.size()));
+  WorkerPool pool(std::max(1, threads));
+  pool.run_tasks(runs.size(), [&](std::size_t k) {
+    jellyfish::SwimSettings s = base;
+    jellyfish::JellyfishSpec& jelly = s.school.front();
+    jelly.frequency_hz = runs[k].frequency;
+    jelly.aperture_centre_m += runs[k].shift_m;
+    runs[k].rec = run_swim(s, {}, nullptr, {});
+  });
+  return threads;
+}
+
+/// Distance travelled versus frequency (Fig. 8.14): the mean per frequency, then each placement.
+render::ChartSpec sweep_distance_chart(int placements, double duration_s) {
+  render::ChartSpec distance;
+  distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
+  distance.x_label = "frequency";
+  distance.x_unit = "Hz";
+  distance.y_label = "distance travelled";
+  distance.y_unit = "m";
+  distance.series.resize(2);
+  distance.series[0].label = "mean of " + std::to_string(placements) + " placements, " +
+                             io::format_double(duration_s) + " s";
+  distance.series[0].markers = true;
+  distance.series[1].label = "each placement (shifts of k/" + std::to_string(placements) + " cell)";
+  distance.series[1].markers = true;
+  distance.series[1].line = false;
+  return distance;
+}
+
+/// The trajectories of the first placement (Fig. 8.13), a series per frequency.
+render::ChartSpec trajectories_chart() {
+  render::ChartSpec trajectories;
+  trajectories.title = "Trajectories (Fig. 8.13), first placement";
+  trajectories.x_label = "t";
+  trajectories.x_unit = "s";
+  trajectories.y_label = "bell centroid travelled";
+  trajectories.y_unit = "m";
+  return trajectories;
+}
+
+/// The bell centroid's distance travelled over time.
+render::Series position_series(const std::string& label, const std::vector<jellyfish::MetricsRow>& metrics) {
+  render::Series series;
+  series.label = label;
+  for (const auto& m : metrics) {
+    series.x.push_back(m.t);
+    series.y.push_back(m.position);
+  }
+  return series;
+}
+
+/// summary.json's figures of a sweep: the best frequency and distance, the placements and threads.
+nlohmann::ordered_json sweep_figures(double best, double best_f, int placements, int threads) {
+  nlohmann::ordered_json fig;
+  fig["units"] = {{"frequency", "Hz"}, {"distance", "m"}, {"offset", "m"}, {"time", "s"}};
+  fig["best_frequency"] = best_f;
+  fig["best_distance"] = std::isfinite(best) ? best : 0.0;
+  fig["placements"] = placements;
+  fig["threads"] = threads;
+  return fig;
+}
+
 std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   const jellyfish::SwimSettings base = read_swim_settings(ctx.config);
   const scene::SweepScene sweep = scene::read_sweep(ctx.config);
@@ -269,40 +340,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
   return [base, frequencies, placements, threads_wanted, ctx](const io::OutputDir& out) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<SweepRun> runs = plan_sweep(base, frequencies, placements);
-    // The pool's threads, no more than there are runs.
-    const int threads = std::min(resolve_threads(threads_wanted), static_cast<int>(runs.size()));
-    WorkerPool pool(std::max(1, threads));
-    pool.run_tasks(runs.size(), [&](std::size_t k) {
-      jellyfish::SwimSettings s = base;
-      jellyfish::JellyfishSpec& jelly = s.school.front();
-      jelly.frequency_hz = runs[k].frequency;
-      jelly.aperture_centre_m += runs[k].shift_m;
-      runs[k].rec = run_swim(s, {}, nullptr, {});
-    });
+    const int threads = run_sweep(base, threads_wanted, runs);
 
     io::CsvWriter csv({"frequency", "distance_travelled", "mean_speed", "lateral_drift", "failed", "placements",
                        "distance_min", "distance_max", "distance_std"});
     io::CsvWriter run_csv({"frequency", "placement", "offset", "distance_travelled", "lateral_drift", "failed"});
     nlohmann::ordered_json frequency_timings = nlohmann::ordered_json::array(),
                            run_timings = nlohmann::ordered_json::array();
-    render::ChartSpec distance, trajectories;
-    distance.title = "Distance travelled versus contraction frequency (Fig. 8.14)";
-    distance.x_label = "frequency";
-    distance.x_unit = "Hz";
-    distance.y_label = "distance travelled";
-    distance.y_unit = "m";
-    distance.series.resize(2);
-    distance.series[0].label = "mean of " + std::to_string(placements) + " placements, " +
-                               io::format_double(base.duration_s) + " s";
-    distance.series[0].markers = true;
-    distance.series[1].label = "each placement (shifts of k/" + std::to_string(placements) + " cell)";
-    distance.series[1].markers = true;
-    distance.series[1].line = false;
-    trajectories.title = "Trajectories (Fig. 8.13), first placement";
-    trajectories.x_label = "t";
-    trajectories.x_unit = "s";
-    trajectories.y_label = "bell centroid travelled";
-    trajectories.y_unit = "m";
+    render::ChartSpec distance = sweep_distance_chart(placements, base.duration_s), trajectories = trajectories_chart();
     nlohmann::ordered_json table = nlohmann::ordered_json::array();
     for (const auto& r : runs) {
       run_csv.row({r.frequency, static_cast<double>(r.placement), r.offset_m, r.distance(), r.lateral(),
@@ -313,12 +358,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
       table.push_back({{"frequency", r.frequency}, {"placement", r.placement}, {"offset", r.offset_m},
                        {"distance_travelled", r.distance()}, {"failure", r.rec.stats.failure}});
       if (r.placement != 0) continue;
-      trajectories.series.emplace_back();
-      trajectories.series.back().label = io::format_double(r.frequency) + " Hz";
-      for (const auto& m : r.rec.metrics) {
-        trajectories.series.back().x.push_back(m.t);
-        trajectories.series.back().y.push_back(m.position);
-      }
+      trajectories.series.push_back(position_series(io::format_double(r.frequency) + " Hz", r.rec.metrics));
     }
     double best = -INFINITY, best_f = 0.0;
     for (std::size_t i = 0; i < frequencies.size(); ++i) {
@@ -341,12 +381,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_sweep(const Context& ctx) {
     write_timings(out, {{"wall_seconds", wall}, {"frequencies", frequency_timings}, {"runs", run_timings}});
     write_chart(out, "sweep.png", distance);
     write_chart(out, "trajectories.png", trajectories);
-    nlohmann::ordered_json fig;
-    fig["units"] = {{"frequency", "Hz"}, {"distance", "m"}, {"offset", "m"}, {"time", "s"}};
-    fig["best_frequency"] = best_f;
-    fig["best_distance"] = std::isfinite(best) ? best : 0.0;
-    fig["placements"] = placements;
-    fig["threads"] = threads;
+    nlohmann::ordered_json fig = sweep_figures(best, best_f, placements, threads);
     fig["wall_seconds"] = wall;
     fig["simulated_seconds"] = base.duration_s;
     fig["bell_height"] = base.jellyfish().height_m;

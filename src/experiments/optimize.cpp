@@ -23,9 +23,9 @@
 namespace jellysim::experiments {
 namespace fs = std::filesystem;
 
-io::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>& x) {
+config::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>& x) {
   scene::ConfigSources sources{{}, plan.scene.string(), "jellyfish", true};
-  if (!plan.scene.empty()) sources.scene_file = io::Config::load(plan.scene);
+  if (!plan.scene.empty()) sources.scene_file = config::Config::load(plan.scene);
   sources.sets = plan.shared;
   // Evaluations write no frame files; best.toml says so too, so that `simulate best.toml` repeats
   // the evaluation's steps exactly.
@@ -33,10 +33,10 @@ io::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>
   sources.sets.push_back("output.vtk=false");
   for (std::size_t i = 0; i < x.size() && i < plan.variables.size(); ++i)
     sources.sets.push_back(plan.variables[i].key + "=" + io::format_double(x[i]));
-  const io::Config base = scene::builtin_jellyfish_scene();
+  const config::Config base = scene::builtin_jellyfish_scene();
   double duration = plan.duration.value_or(plan.target_time_s);
   if (plan.cycles) {
-    const io::Config resolved = scene::resolve_config(base, sources, "the jellyfish scene");
+    const config::Config resolved = scene::resolve_config(base, sources, "the jellyfish scene");
     const double frequency = resolved.number("jellyfish.frequency");
     if (!(frequency > 0)) throw InputError("field 'cycles' needs jellyfish.frequency > 0");
     // One frame beyond the last cycle: the run's last frame lies on the frame clock, which may stop
@@ -49,7 +49,7 @@ io::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>
 
 /// The scene's own values of the variables (the baseline stroke).
 std::vector<double> scene_values(const OptimizePlan& plan) {
-  const io::Config c = evaluation_config(plan, {});
+  const config::Config c = evaluation_config(plan, {});
   std::vector<double> x;
   for (const DesignVariable& v : plan.variables) {
     if (!c.has(v.key)) throw InputError(plan.file.string() + ": variables." + v.key + ": the scene has no such key");

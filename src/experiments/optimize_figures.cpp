@@ -125,7 +125,7 @@ std::map<std::string, double> stroke_figures(const jellyfish::SwimSettings& sett
   return f;
 }
 
-Evaluation evaluate_swim(const io::Config& config, const std::optional<Vec2>& target, double target_time_s) {
+Evaluation evaluate_swim(const config::Config& config, const std::optional<Vec2>& target, double target_time_s) {
   const jellyfish::SwimSettings settings = read_swim_settings(config);
   SwimOutputOptions options = read_output_options(config);
   options.pictures = false;

@@ -30,8 +30,8 @@ std::string at(const std::string& file, const toml::node& n) {
 double number_in(const toml::node& n, const std::string& file, const std::string& field, double lo, double hi) {
   const std::optional<double> v = n.value<double>();
   if (!v || !(*v >= lo && *v <= hi))
-    throw InputError(at(file, n) + "field '" + field + "' must be a number in [" + io::format_number(lo) + ", " +
-                     io::format_number(hi) + "]");
+    throw InputError(at(file, n) + "field '" + field + "' must be a number in [" + config::format_number(lo) + ", " +
+                     config::format_number(hi) + "]");
   return *v;
 }
 
@@ -218,7 +218,7 @@ OptimizePlan parse_optimize_plan(std::string_view text, const std::filesystem::p
 OptimizePlan read_optimize_plan(const std::filesystem::path& file) {
   std::string text;
   try {
-    text = io::read_regular_file(file, io::Config::kMaxSceneFileBytes, true);
+    text = io::read_regular_file(file, config::Config::kMaxSceneFileBytes, true);
   } catch (const InputError& e) {
     throw InputError("plan file: " + std::string(e.what()));
   }

@@ -87,7 +87,7 @@ bool maximised_objective(const std::string& name) {
 Evaluator swim_evaluator(const OptimizePlan& plan) {
   const std::optional<Vec2> target = plan.target;
   const double time = plan.target_time_s;
-  return [target, time](const io::Config& c) { return evaluate_swim(c, target, time); };
+  return [target, time](const config::Config& c) { return evaluate_swim(c, target, time); };
 }
 
 std::vector<std::string> OptimizeRun::columns() const {

@@ -82,12 +82,12 @@ struct SweepPoint {
   bool failed = false;
 };
 
-std::vector<SweepPoint> sweep(const io::Config& config, const std::vector<double>& frequencies, double cycles, int threads) {
+std::vector<SweepPoint> sweep(const config::Config& config, const std::vector<double>& frequencies, double cycles, int threads) {
   std::vector<SweepPoint> points(frequencies.size());
   WorkerPool pool(std::max(1, std::min(resolve_threads(threads), static_cast<int>(frequencies.size()))));
   pool.run_tasks(frequencies.size(), [&](std::size_t k) {
     const SerialThreadsScope serial;
-    io::Config c = config;
+    config::Config c = config;
     c.set("jellyfish.frequency=" + io::format_double(frequencies[k]));
     // One frame beyond the last cycle (the frame clock may stop short of cycles / f).
     c.set("duration=" + io::format_double(cycles / frequencies[k] + c.number("output.frame_interval")));

@@ -18,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// The Figure 8.1 bar as a scene body with its outline.
-sph::Scene bar_scene(const io::Config& c) {
+sph::Scene bar_scene(const config::Config& c) {
   sph::Scene s;
   try {
     s.body = elastic::make_bar(read_bar(c));

@@ -28,7 +28,7 @@ struct StreamSetup {
   int strip_frames = 12;
 };
 
-StreamSetup read_stream(const io::Config& c) {
+StreamSetup read_stream(const config::Config& c) {
   StreamSetup s;
   try {
     s.scene.body = elastic::make_bar(read_bar(c));
@@ -83,7 +83,7 @@ struct LarvaSetup {
   double strip_start = 0.0, velocity_scale = 0.0;
 };
 
-LarvaSetup read_larva_setup(const io::Config& c) {
+LarvaSetup read_larva_setup(const config::Config& c) {
   LarvaSetup s;
   s.larva = build_larva_scene(c);
   s.run = scene::read_particle_run_settings(c);
@@ -138,13 +138,13 @@ std::function<Outcome(const io::OutputDir&)> prepare_mosquito_larva(const Contex
 // ---- integrator-cost (Figure 8.6) ----------------------------------------------------------------
 
 struct CostSetup {
-  io::Config config;
+  config::Config config;
   sph::RunSettings run;
   std::vector<double> gas_constants;
   std::vector<std::string> integrators, controls;
 };
 
-CostSetup read_cost(const io::Config& c) {
+CostSetup read_cost(const config::Config& c) {
   CostSetup s{c, scene::read_particle_run_settings(c), {}, {}, {}};
   scene::CostStudy study = scene::read_cost_study(c);
   s.gas_constants = std::move(study.gas_constants);

@@ -16,13 +16,13 @@ namespace {
 
 using StagesSetup = scene::StagesScene;
 
-Outcome run_stages(const StagesSetup& s, const io::Config& config, const io::OutputDir& out) {
+Outcome run_stages(const StagesSetup& s, const config::Config& config, const io::OutputDir& out) {
   const auto t0 = std::chrono::steady_clock::now();
   jellyfish::SliceFrame a, b;
   if (s.simulated) {
     // One contraction cycle of the built-in scene: expanded = the rest state, contracted = the
     // frame with the smallest sub-umbrellar volume.
-    io::Config scene = jellysim::scene::builtin_jellyfish_scene();
+    config::Config scene = jellysim::scene::builtin_jellyfish_scene();
     scene.set("tank.tracers_per_side=0");
     scene.set("duration=" + io::format_double(1.0 / scene.number("jellyfish.frequency")));
     const SwimRecording rec = run_swim(read_swim_settings(scene), {}, nullptr, {});
@@ -67,7 +67,7 @@ Experiment stages_experiment() {
   e.renders = true;
   e.prepare = [](const Context& ctx) {
     const StagesSetup setup = scene::read_stages_scene(ctx.config);
-    const io::Config config = ctx.config;
+    const config::Config config = ctx.config;
     return std::function<Outcome(const io::OutputDir&)>(
         [setup, config](const io::OutputDir& out) { return run_stages(setup, config, out); });
   };

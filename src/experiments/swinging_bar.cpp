@@ -23,7 +23,7 @@ struct BarScene {
   double max_speed = 1000.0;
 };
 
-BarScene read_bar_scene(const io::Config& c) {
+BarScene read_bar_scene(const config::Config& c) {
   const scene::Reader r(c, scene::particle_scene_rules());
   BarScene s;
   s.bar = scene::read_bar(c);

@@ -65,6 +65,28 @@ double mean_from(const std::vector<double>& a, std::size_t from) {
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
+// The three runs' headings and the targets' bearings over their first n frames (heading.png).
+render::ChartSpec heading_chart(const HeadingTrace& to_left, const HeadingTrace& none, const HeadingTrace& to_right,
+                                std::size_t n) {
+  render::ChartSpec chart;
+  chart.title = "Steering toward a target (heading from +y, degrees)";
+  chart.x_label = "t";
+  chart.x_unit = "s";
+  chart.y_label = "heading";
+  chart.y_unit = "°";
+  auto series = [&](const std::string& label, const std::vector<double>& y) {
+    render::Series s;
+    s.label = label;
+    s.x.assign(none.t.begin(), none.t.begin() + static_cast<std::ptrdiff_t>(n));
+    s.y.assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));
+    return s;
+  };
+  chart.series = {series("steered left", to_left.heading_deg), series("not steered", none.heading_deg),
+                  series("steered right", to_right.heading_deg), series("bearing of left target", to_left.bearing_deg),
+                  series("bearing of right target", to_right.bearing_deg)};
+  return chart;
+}
+
 std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx) {
   const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   if (settings.school.size() != 1)
@@ -91,23 +113,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
                to_right.bearing_deg[k]});
     out.write_text("heading.csv", csv.text());
 
-    render::ChartSpec chart;
-    chart.title = "Steering toward a target (heading from +y, degrees)";
-    chart.x_label = "t";
-    chart.x_unit = "s";
-    chart.y_label = "heading";
-    chart.y_unit = "°";
-    auto series = [&](const std::string& label, const std::vector<double>& y) {
-      render::Series s;
-      s.label = label;
-      s.x.assign(none.t.begin(), none.t.begin() + static_cast<std::ptrdiff_t>(n));
-      s.y.assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));
-      return s;
-    };
-    chart.series = {series("steered left", to_left.heading_deg), series("not steered", none.heading_deg),
-                    series("steered right", to_right.heading_deg), series("bearing of left target", to_left.bearing_deg),
-                    series("bearing of right target", to_right.bearing_deg)};
-    out.write_text("heading.png", render::chart_png(chart));
+    out.write_text("heading.png", render::chart_png(heading_chart(to_left, none, to_right, n)));
 
     // After the settling time: mean heading and mean distance from the target's bearing.
     const double frequency = settings.jellyfish().frequency_hz;
@@ -138,6 +144,21 @@ std::function<Outcome(const io::OutputDir&)> prepare_steering(const Context& ctx
     write_summary(out, "experiment steering", ctx.config, fig, failure);
     return Outcome{failure};
   };
+}
+
+// The drag coefficient over time (obstacle-flow's drag.png).
+render::ChartSpec drag_chart(const std::vector<double>& t, const std::vector<double>& cd) {
+  render::ChartSpec chart;
+  chart.title = "Flow past a cylinder: drag coefficient";
+  chart.x_label = "t";
+  chart.x_unit = "s";
+  chart.y_label = "C_D = F / (rho U^2 D / 2)";
+  render::Series s;
+  s.label = "C_D";
+  s.x = t;
+  s.y = cd;
+  chart.series = {s};
+  return chart;
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_obstacle_flow(const Context& ctx) {
@@ -173,17 +194,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_obstacle_flow(const Context
     po.quantity = render::FieldQuantity::vorticity;
     const render::FieldPicture p = swim_picture(sim, 0.0);
     out.write_text("flow.png", render::field_png(p, po));
-    render::ChartSpec chart;
-    chart.title = "Flow past a cylinder: drag coefficient";
-    chart.x_label = "t";
-    chart.x_unit = "s";
-    chart.y_label = "C_D = F / (rho U^2 D / 2)";
-    render::Series s;
-    s.label = "C_D";
-    s.x = t;
-    s.y = cd;
-    chart.series = {s};
-    out.write_text("drag.png", render::chart_png(chart));
+    out.write_text("drag.png", render::chart_png(drag_chart(t, cd)));
     nlohmann::ordered_json fig;
     fig["units"] = {{"force", "N/m"}, {"velocity", "m/s"}, {"length", "m"}};
     fig["reynolds_number"] = speed * diameter / std::max(settings.tank.viscosity_m2_per_s, 1e-12);

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <limits>
 #include <span>
+#include <utility>
 
 
 namespace jellysim::fluid {
@@ -141,108 +142,174 @@ struct AdvectionPass {
   VelocityBounds* bounds = nullptr;
 };
 
-// Advects one component (0: u on x-faces, 1: v on y-faces) over the faces of `r`. Positions are
-// in grid coordinates (cells from the origin corner); the sample indices of u are (x, y − ½), of
-// v (x − ½, y). Midpoint back-trace as back_trace(): x − Δt·u(x − ½Δt·u(x)), u the carrier;
-// ax = Δt/Δx and ay = Δt/Δy are negative for a forward (reverse-in-time) trace.
+// The faces of one row of a component and what its advection reads there: the velocity at the
+// faces is the component itself and the average of the other one's four surrounding faces
+// (velocity_at_u_face / velocity_at_v_face), o0 the row below and o1 the row above.
+struct FaceRow {
+  double gy;  // the row's y in grid coordinates
+  const double* own;
+  const double* o0;
+  const double* o1;
+  double* out;
+  double* out_lo;  // the sample ranges (Bounds), else null
+  double* out_hi;
+};
+
+// Advects one component (0: u on x-faces, 1: v on y-faces). Positions are in grid coordinates
+// (cells from the origin corner); the sample indices of u are (x, y − ½), of v (x − ½, y).
+// Midpoint back-trace as back_trace(): x − Δt·u(x − ½Δt·u(x)), u the carrier; ax = Δt/Δx and
+// ay = Δt/Δy are negative for a forward (reverse-in-time) trace.
 // Each row is done in chunks of kChunk faces and three passes (midpoints; velocity there and end
 // points; final sample), two faces at a time; the independent faces of a pass overlap in the CPU
 // instead of each face waiting on its own chain of three dependent interpolations. An odd face
 // count is padded with the next face (its inputs are stored samples or ghosts; its result is
-// dropped).
+// dropped). The passes are always inlined into the row loop, whose locals they take by value.
 template <int Component, bool PeriodicX, bool PeriodicY, bool Bounds>
-void advect_component(const AdvectionPass& pass, double ax, double ay, double reach_x, double reach_y,
-                      const FaceRange& r) {
-  constexpr int kChunk = 128;
-  constexpr double sx = Component == 0 ? 0.0 : 0.5;  // staggering of the component
-  constexpr double sy = Component == 0 ? 0.5 : 0.0;
-  const Velocity& src = pass.carrier;
-  Field& dst = Component == 0 ? pass.dst.u : pass.dst.v;
-  const MacGrid& g = src.u.grid();
-  const double nx = g.nx;
-  const double ny = g.ny;
-  const double* U = src.u.ptr(0, 0);
-  const double* V = src.v.ptr(0, 0);
-  const int su = static_cast<int>(src.u.stride());
-  const int sv = static_cast<int>(src.v.stride());
-  const Field& quantity = Component == 0 ? pass.quantity.u : pass.quantity.v;
-  const double* F = quantity.ptr(0, 0);
-  const int sf = static_cast<int>(quantity.stride());
-  const double half_ax = 0.5 * ax;
-  const double half_ay = 0.5 * ay;
-  const Double2 lane{0.0, 1.0};
-  alignas(16) double px[kChunk], py[kChunk];
-  for (int j = r.j_begin; j < r.j_end; ++j) {
-    const double gy = j + sy;
-    double* out = dst.ptr(0, j);
-    double* out_lo = nullptr;
-    double* out_hi = nullptr;
+class ComponentAdvection {
+ public:
+  static constexpr int kChunk = 128;
+  static constexpr double sx = Component == 0 ? 0.0 : 0.5;  // staggering of the component
+  static constexpr double sy = Component == 0 ? 0.5 : 0.0;
+
+  ComponentAdvection(const AdvectionPass& pass, double ax, double ay)
+      : pass_(pass), src_(pass.carrier), dst_(Component == 0 ? pass.dst.u : pass.dst.v),
+        quantity_(Component == 0 ? pass.quantity.u : pass.quantity.v), ax_(ax), ay_(ay) {}
+
+  FaceRow row(int j) const {
+    FaceRow f{j + sy,
+              Component == 0 ? src_.u.ptr(0, j) : src_.v.ptr(0, j),
+              Component == 0 ? src_.v.ptr(-1, j) : src_.u.ptr(0, j - 1),
+              Component == 0 ? src_.v.ptr(-1, j + 1) : src_.u.ptr(0, j),
+              dst_.ptr(0, j),
+              nullptr,
+              nullptr};
     if constexpr (Bounds) {
-      out_lo = (Component == 0 ? pass.bounds->lo.u : pass.bounds->lo.v).ptr(0, j);
-      out_hi = (Component == 0 ? pass.bounds->hi.u : pass.bounds->hi.v).ptr(0, j);
+      f.out_lo = (Component == 0 ? pass_.bounds->lo.u : pass_.bounds->lo.v).ptr(0, j);
+      f.out_hi = (Component == 0 ? pass_.bounds->hi.u : pass_.bounds->hi.v).ptr(0, j);
     }
-    // Velocity at the faces of row j: the component itself and the average of the other one's
-    // four surrounding faces (velocity_at_u_face / velocity_at_v_face).
-    const double* own = Component == 0 ? src.u.ptr(0, j) : src.v.ptr(0, j);
-    const double* o0 = Component == 0 ? src.v.ptr(-1, j) : src.u.ptr(0, j - 1);
-    const double* o1 = Component == 0 ? src.v.ptr(-1, j + 1) : src.u.ptr(0, j);
-    auto chunk = [&]<bool Confine>(int c0, int n) {
-      for (int k = 0; k < n; k += 2) {  // pass 1: midpoints x − ½Δt·u(x)
-        const int i = c0 + k;
-        const Double2 other = 0.25 * (load2(o0 + i) + load2(o0 + i + 1) + load2(o1 + i) + load2(o1 + i + 1));
-        const Double2 uf = Component == 0 ? load2(own + i) : other;
-        const Double2 vf = Component == 0 ? other : load2(own + i);
-        const Double2 gx = (i + sx) + lane;
-        store2(px + k, confine2<PeriodicX, Confine>(gx - half_ax * uf, nx));
-        store2(py + k, confine2<PeriodicY, Confine>(gy - half_ay * vf, ny));
+    return f;
+  }
+
+  // Pass 1: midpoints x − ½Δt·u(x) of faces [c0, c0 + n).
+  template <bool Confine>
+  [[gnu::always_inline]] void trace_midpoints(const FaceRow& f, int c0, int n, double* px, double* py) const {
+    const double nx = src_.u.grid().nx, ny = src_.u.grid().ny;
+    const double half_ax = 0.5 * ax_, half_ay = 0.5 * ay_;
+    const Double2 lane{0.0, 1.0};
+    for (int k = 0; k < n; k += 2) {
+      const int i = c0 + k;
+      const Double2 other = 0.25 * (load2(f.o0 + i) + load2(f.o0 + i + 1) + load2(f.o1 + i) + load2(f.o1 + i + 1));
+      const Double2 uf = Component == 0 ? load2(f.own + i) : other;
+      const Double2 vf = Component == 0 ? other : load2(f.own + i);
+      const Double2 gx = (i + sx) + lane;
+      store2(px + k, confine2<PeriodicX, Confine>(gx - half_ax * uf, nx));
+      store2(py + k, confine2<PeriodicY, Confine>(f.gy - half_ay * vf, ny));
+    }
+  }
+
+  // Pass 2: end points x − Δt·u(midpoint), overwriting the midpoints.
+  template <bool Confine>
+  [[gnu::always_inline]] void trace_end_points(const FaceRow& f, int c0, int n, double* px, double* py) const {
+    const double nx = src_.u.grid().nx, ny = src_.u.grid().ny;
+    const double ax = ax_, ay = ay_;
+    const double* U = src_.u.ptr(0, 0);
+    const double* V = src_.v.ptr(0, 0);
+    const int su = static_cast<int>(src_.u.stride());
+    const int sv = static_cast<int>(src_.v.stride());
+    const Double2 lane{0.0, 1.0};
+    for (int k = 0; k < n; k += 2) {
+      const Double2 x = load2(px + k);
+      const Double2 y = load2(py + k);
+      const Double2 um = bilinear2(U, su, x, y - 0.5);
+      const Double2 vm = bilinear2(V, sv, x - 0.5, y);
+      const Double2 gx = (c0 + k + sx) + lane;
+      store2(px + k, confine2<PeriodicX, Confine>(gx - ax * um, nx));
+      store2(py + k, confine2<PeriodicY, Confine>(f.gy - ay * vm, ny));
+    }
+  }
+
+  // Pass 3: the quantity at the end points.
+  [[gnu::always_inline]] void sample_end_points(const FaceRow& f, int c0, int n, const double* px,
+                                                const double* py) const {
+    const double* F = quantity_.ptr(0, 0);
+    const int sf = static_cast<int>(quantity_.stride());
+    double* out = f.out;
+    int k = 0;
+    for (; k + 2 <= n; k += 2) store2(out + c0 + k, bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy));
+    if (k < n) out[c0 + k] = bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy)[0];
+  }
+
+  // Pass 3 with the sample ranges: the value and the smallest and largest of the four samples it
+  // combined (the range a compensated scheme's value is clamped to).
+  [[gnu::always_inline]] void sample_end_points_with_range(const FaceRow& f, int c0, int n, const double* px,
+                                                           const double* py) const {
+    const double* F = quantity_.ptr(0, 0);
+    const int sf = static_cast<int>(quantity_.stride());
+    for (int k = 0; k < n; k += 2) {
+      const Cell2 c = cell2(F, sf, load2(px + k) - sx, load2(py + k) - sy);
+      const Double2 value = bilinear2(c);
+      const Double2 lo = simd::min2(simd::min2(c.q00, c.q01), simd::min2(c.q10, c.q11));
+      const Double2 hi = simd::max2(simd::max2(c.q00, c.q01), simd::max2(c.q10, c.q11));
+      const int m = std::min(2, n - k);
+      for (int e = 0; e < m; ++e) {
+        f.out[c0 + k + e] = value[e];
+        f.out_lo[c0 + k + e] = lo[e];
+        f.out_hi[c0 + k + e] = hi[e];
       }
-      for (int k = 0; k < n; k += 2) {  // pass 2: end points x − Δt·u(midpoint)
-        const Double2 x = load2(px + k);
-        const Double2 y = load2(py + k);
-        const Double2 um = bilinear2(U, su, x, y - 0.5);
-        const Double2 vm = bilinear2(V, sv, x - 0.5, y);
-        const Double2 gx = (c0 + k + sx) + lane;
-        store2(px + k, confine2<PeriodicX, Confine>(gx - ax * um, nx));
-        store2(py + k, confine2<PeriodicY, Confine>(gy - ay * vm, ny));
-      }
-      if constexpr (Bounds) {  // pass 3 with the sample ranges
-        for (int k = 0; k < n; k += 2) {
-          // The value and the smallest and largest of the four samples it combined (the range a
-          // compensated scheme's value is clamped to).
-          const Cell2 c = cell2(F, sf, load2(px + k) - sx, load2(py + k) - sy);
-          const Double2 value = bilinear2(c);
-          const Double2 lo = simd::min2(simd::min2(c.q00, c.q01), simd::min2(c.q10, c.q11));
-          const Double2 hi = simd::max2(simd::max2(c.q00, c.q01), simd::max2(c.q10, c.q11));
-          const int m = std::min(2, n - k);
-          for (int e = 0; e < m; ++e) {
-            out[c0 + k + e] = value[e];
-            out_lo[c0 + k + e] = lo[e];
-            out_hi[c0 + k + e] = hi[e];
-          }
-        }
-      } else {
-        int k = 0;
-        for (; k + 2 <= n; k += 2)  // pass 3: the quantity at the end points
-          store2(out + c0 + k, bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy));
-        if (k < n) out[c0 + k] = bilinear2(F, sf, load2(px + k) - sx, load2(py + k) - sy)[0];
-      }
-    };
-    // A chunk whose faces lie at least reach_x (reach_y) cells inside the domain cannot trace
-    // back out of it (|velocity| ≤ the field's max), so it needs no clamping or wrapping.
-    // Faces [safe_begin, safe_end) of a row with row_inside qualify (a face at x needs
-    // x − reach ≥ 0 and x + reach ≤ n; the end leaves room for the padding face of a pair).
+    }
+  }
+
+  template <bool Confine>
+  [[gnu::always_inline]] void advect_chunk(const FaceRow& f, int c0, int n, double* px, double* py) const {
+    trace_midpoints<Confine>(f, c0, n, px, py);
+    trace_end_points<Confine>(f, c0, n, px, py);
+    if constexpr (Bounds)
+      sample_end_points_with_range(f, c0, n, px, py);
+    else
+      sample_end_points(f, c0, n, px, py);
+  }
+
+  template <bool Confine>
+  [[gnu::always_inline]] void advect_faces(const FaceRow& f, int from, int to, double* px, double* py) const {
+    for (int c0 = from; c0 < to; c0 += kChunk) advect_chunk<Confine>(f, c0, std::min(kChunk, to - c0), px, py);
+  }
+
+  // A chunk whose faces lie at least reach_x (reach_y) cells inside the domain cannot trace back
+  // out of it (|velocity| ≤ the field's max), so it needs no clamping or wrapping. Faces
+  // [safe_begin, safe_end) of a row with row_inside qualify (a face at x needs x − reach ≥ 0 and
+  // x + reach ≤ n; the end leaves room for the padding face of a pair).
+  std::pair<int, int> faces_needing_no_confinement(double gy, double reach_x, double reach_y, const FaceRange& r) const {
+    const double nx = src_.u.grid().nx, ny = src_.u.grid().ny;
     const bool row_inside = gy - reach_y >= 0.0 && gy + reach_y <= ny;
     int safe_begin = r.i_end, safe_end = r.i_end;
     if (row_inside && reach_x < nx) {
       safe_begin = std::clamp(static_cast<int>(std::ceil(reach_x - sx)), r.i_begin, r.i_end);
       safe_end = std::clamp(static_cast<int>(std::floor(nx - reach_x - sx)) - 1, safe_begin, r.i_end);
     }
-    auto run = [&]<bool Confine>(int from, int to) {
-      for (int c0 = from; c0 < to; c0 += kChunk) chunk.template operator()<Confine>(c0, std::min(kChunk, to - c0));
-    };
-    run.template operator()<true>(r.i_begin, safe_begin);
-    run.template operator()<false>(safe_begin, safe_end);
-    run.template operator()<true>(safe_end, r.i_end);
+    return {safe_begin, safe_end};
+  }
+
+ private:
+  const AdvectionPass& pass_;
+  const Velocity& src_;
+  Field& dst_;
+  const Field& quantity_;
+  double ax_, ay_;
+};
+
+// Advects one component over the faces of `r` (ComponentAdvection), row by row.
+template <int Component, bool PeriodicX, bool PeriodicY, bool Bounds>
+void advect_component(const AdvectionPass& pass, double ax, double ay, double reach_x, double reach_y,
+                      const FaceRange& r) {
+  using Advection = ComponentAdvection<Component, PeriodicX, PeriodicY, Bounds>;
+  const Advection advection(pass, ax, ay);
+  alignas(16) double px[Advection::kChunk], py[Advection::kChunk];
+  for (int j = r.j_begin; j < r.j_end; ++j) {
+    const FaceRow f = advection.row(j);
+    const auto [safe_begin, safe_end] = advection.faces_needing_no_confinement(f.gy, reach_x, reach_y, r);
+    advection.template advect_faces<true>(f, r.i_begin, safe_begin, px, py);
+    advection.template advect_faces<false>(f, safe_begin, safe_end, px, py);
+    advection.template advect_faces<true>(f, safe_end, r.i_end, px, py);
   }
 }
 

@@ -462,9 +462,10 @@ void check_beam_points(const StructureCheck& check, const Beam& b, const std::st
   check.distinct({b.left, b.middle, b.right}, at);
 }
 
-void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem::path& stem) {
-  // Everything is checked and formatted first: a refused structure writes nothing.
-  const StructureCheck check(stem, s.vertices.size());
+namespace {
+
+/// Every field of the structure checked as the reader would check it (StructureCheck fails naming it).
+void check_structure(const StructureCheck& check, const elastic::Ib2dStructure& s) {
   check.rows(s.vertices.size(), "vertices");
   for (std::size_t k = 0; k < s.vertices.size(); ++k) {
     check.finite(s.vertices[k].x, item("vertices", k) + ".x");
@@ -494,13 +495,19 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
     check.index(s.targets[k].point, item("targets", k) + ".point");
     check.non_negative(s.targets[k].stiffness, item("targets", k) + ".stiffness");
   }
+}
 
-  struct Output {
-    const Format* format;
-    bool present;
-    std::string text;
-  };
-  std::vector<Output> outputs;
+/// One IB2d file of a structure: its kind, whether the structure has any (else a stale one is
+/// removed) and its text.
+struct Ib2dFileText {
+  const Format* format;
+  bool present;
+  std::string text;
+};
+
+/// The files' texts, the .vertex file first.
+std::vector<Ib2dFileText> structure_file_texts(const elastic::Ib2dStructure& s) {
+  std::vector<Ib2dFileText> outputs;
   {
     TextBuilder out(s.vertices.size());
     for (const Vec2& v : s.vertices) {
@@ -535,12 +542,13 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
     }
     outputs.push_back({&kTarget, !s.targets.empty(), out.take()});
   }
-  for (const Output& o : outputs)
-    if (o.present && o.text.size() > kMaxIb2dFileBytes)
-      check.fail("its " + std::string(o.format->extension) + " file would be " + std::to_string(o.text.size()) +
-                 " bytes; the reader takes at most " + std::to_string(kMaxIb2dFileBytes));
-  // An optional file left from an earlier structure would be read back with this one.
-  for (const Output& o : outputs) {
+  return outputs;
+}
+
+/// An optional file left from an earlier structure would be read back with this one: each must be
+/// a file (or a link) that can be removed.
+void check_stale_files(const std::filesystem::path& stem, const std::vector<Ib2dFileText>& outputs) {
+  for (const Ib2dFileText& o : outputs) {
     if (o.present) continue;
     const fs::path path = file_of(stem, *o.format);
     std::error_code ec;
@@ -551,8 +559,10 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
       throw RunError("cannot write the IB2d structure '" + stem.string() + "': '" + path.string() +
                      "' is in the way (it is " + type_name(link.type()) + ")");
   }
+}
 
-  // The optional files first, the .vertex file (the one a reader needs) last.
+/// The optional files first, the .vertex file (the one a reader needs) last; stale ones removed.
+void write_structure_files(const std::filesystem::path& stem, const std::vector<Ib2dFileText>& outputs) {
   for (auto o = outputs.rbegin(); o != outputs.rend(); ++o) {
     const fs::path path = file_of(stem, *o->format);
     if (o->present) {
@@ -563,6 +573,21 @@ void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem
     fs::remove(path, ec);  // no error when it is not there
     if (ec) throw RunError("cannot remove the stale '" + path.string() + "': " + ec.message());
   }
+}
+
+}  // namespace
+
+void write_ib2d_structure(const elastic::Ib2dStructure& s, const std::filesystem::path& stem) {
+  // Everything is checked and formatted first: a refused structure writes nothing.
+  const StructureCheck check(stem, s.vertices.size());
+  check_structure(check, s);
+  const std::vector<Ib2dFileText> outputs = structure_file_texts(s);
+  for (const Ib2dFileText& o : outputs)
+    if (o.present && o.text.size() > kMaxIb2dFileBytes)
+      check.fail("its " + std::string(o.format->extension) + " file would be " + std::to_string(o.text.size()) +
+                 " bytes; the reader takes at most " + std::to_string(kMaxIb2dFileBytes));
+  check_stale_files(stem, outputs);
+  write_structure_files(stem, outputs);
 }
 
 }  // namespace jellysim::io

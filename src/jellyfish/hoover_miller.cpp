@@ -1,5 +1,7 @@
 #include "jellysim/jellyfish/hoover_miller.hpp"
 
+#include <optional>
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -86,6 +88,28 @@ HooverMillerBell hoover_miller_bell(const HooverMillerSpec& s) {
 
   for (int k = n + 2 * muscles; k < static_cast<int>(x.size()); ++k) st.targets.push_back({k, s.target_stiffness});
   return out;
+}
+
+std::vector<double> cycle_displacements(const std::vector<double>& t_s, const std::vector<double>& y_m, int cycles,
+                                        double tolerance_s) {
+  const auto at = [&](double time) {
+    for (std::size_t i = 0; i < t_s.size(); ++i)
+      if (std::abs(t_s[i] - time) <= tolerance_s) return std::optional<double>(y_m[i]);
+    return std::optional<double>();
+  };
+  std::vector<double> per_cycle;
+  for (int k = 1; k <= cycles; ++k) {
+    const auto a = at(k - 1.0), b = at(static_cast<double>(k));
+    if (a && b) per_cycle.push_back(*b - *a);
+  }
+  return per_cycle;
+}
+
+double later_cycle_displacement(const std::vector<double>& per_cycle) {
+  double mean_later = 0.0;
+  int later = 0;
+  for (std::size_t k = 1; k < per_cycle.size() && k < 3; ++k, ++later) mean_later += per_cycle[k];
+  return later > 0 ? mean_later / later : 0.0;
 }
 
 }  // namespace jellysim::jellyfish

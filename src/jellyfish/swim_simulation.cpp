@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "jellysim/core/state_archive.hpp"
-#include "jellysim/elastic/mirror.hpp"
+#include "jellysim/elastic/body_mirror.hpp"
 
 namespace jellysim::jellyfish {
 

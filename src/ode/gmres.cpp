@@ -24,6 +24,46 @@ void givens(double a, double b, double& c, double& s) {
 
 namespace {
 
+/// Arnoldi step k: w = A v_k orthogonalised against v_0 … v_k (modified Gram–Schmidt) into column k
+/// of the Hessenberg matrix h, and v_{k+1} = w / h(k+1, k) when that is not zero.
+void arnoldi_column(const LinearOperator& apply, std::vector<Eigen::VectorXd>& basis, Eigen::MatrixXd& h,
+                    Eigen::VectorXd& w, int k) {
+  apply(basis[static_cast<std::size_t>(k)], w);
+  for (int i = 0; i <= k; ++i) {
+    h(i, k) = w.dot(basis[static_cast<std::size_t>(i)]);
+    w -= h(i, k) * basis[static_cast<std::size_t>(i)];
+  }
+  h(k + 1, k) = w.norm();
+  if (h(k + 1, k) > 0.0) basis[static_cast<std::size_t>(k + 1)] = w / h(k + 1, k);
+}
+
+/// Column k of h made upper triangular: the previous Givens rotations applied to it, then a new one
+/// that zeroes h(k+1, k), applied to the residual vector g as well (|g[k+1]| is the new residual).
+void rotate_column(Eigen::MatrixXd& h, Eigen::VectorXd& cs, Eigen::VectorXd& sn, Eigen::VectorXd& g, int k) {
+  for (int i = 0; i < k; ++i) {
+    const double t = cs[i] * h(i, k) + sn[i] * h(i + 1, k);
+    h(i + 1, k) = -sn[i] * h(i, k) + cs[i] * h(i + 1, k);
+    h(i, k) = t;
+  }
+  givens(h(k, k), h(k + 1, k), cs[k], sn[k]);
+  h(k, k) = cs[k] * h(k, k) + sn[k] * h(k + 1, k);
+  h(k + 1, k) = 0.0;
+  g[k + 1] = -sn[k] * g[k];
+  g[k] = cs[k] * g[k];
+}
+
+/// The cycle's residual r = b − A x (r = b with x = 0 when `from_zero`).
+void cycle_residual(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool from_zero,
+                    Eigen::VectorXd& r, Eigen::VectorXd& w) {
+  if (from_zero) {
+    x.setZero(b.size());
+    r = b;
+  } else {
+    apply(x, w);
+    r = b - w;
+  }
+}
+
 /// The GMRES cycles. `coefficients`, when given: x starts at zero, the first residual is b itself,
 /// and a first cycle that converges returns its coefficients without a final residual check.
 GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
@@ -44,13 +84,7 @@ GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eig
   Eigen::VectorXd cs(m), sn(m), g(m + 1), w(n), r(n);
   bool first_cycle = true;
   while (true) {
-    if (coefficients && first_cycle) {
-      x.setZero(n);
-      r = b;
-    } else {
-      apply(x, w);
-      r = b - w;
-    }
+    cycle_residual(apply, b, x, coefficients && first_cycle, r, w);
     double beta = r.norm();
     report.relative_residual = beta / b_norm;
     if (report.relative_residual <= tolerance) {
@@ -68,24 +102,9 @@ GmresReport run_gmres(const LinearOperator& apply, const Eigen::VectorXd& b, Eig
     int k = 0;
     bool converged = false;
     for (; k < m && report.iterations < max_iterations; ++k) {
-      apply(basis[static_cast<std::size_t>(k)], w);
+      arnoldi_column(apply, basis, h, w, k);
       ++report.iterations;
-      for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
-        h(i, k) = w.dot(basis[static_cast<std::size_t>(i)]);
-        w -= h(i, k) * basis[static_cast<std::size_t>(i)];
-      }
-      h(k + 1, k) = w.norm();
-      if (h(k + 1, k) > 0.0) basis[static_cast<std::size_t>(k + 1)] = w / h(k + 1, k);
-      for (int i = 0; i < k; ++i) {  // apply the previous rotations to the new column
-        const double t = cs[i] * h(i, k) + sn[i] * h(i + 1, k);
-        h(i + 1, k) = -sn[i] * h(i, k) + cs[i] * h(i + 1, k);
-        h(i, k) = t;
-      }
-      givens(h(k, k), h(k + 1, k), cs[k], sn[k]);
-      h(k, k) = cs[k] * h(k, k) + sn[k] * h(k + 1, k);
-      h(k + 1, k) = 0.0;
-      g[k + 1] = -sn[k] * g[k];
-      g[k] = cs[k] * g[k];
+      rotate_column(h, cs, sn, g, k);
       if (std::abs(g[k + 1]) <= tolerance * b_norm || h(k, k) == 0.0) {
         converged = std::abs(g[k + 1]) <= tolerance * b_norm;
         ++k;

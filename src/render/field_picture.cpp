@@ -207,6 +207,93 @@ std::string tick_text(double v) {
   return text;
 }
 
+// Where the plot sits in a square panel: the view (m), its scale and the plot area (pixels). The
+// plot area keeps the view's aspect ratio, centred in what the margins leave.
+struct PlotFrame {
+  std::array<Vec2, 2> view;
+  double px_per_m = 1.0;
+  int text = 1;  // text scale
+  int x0 = 0, y0 = 0, plot_w = 0, plot_h = 0;
+  Vec2 to_px(Vec2 p) const { return Vec2{(p.x - view[0].x) * px_per_m, (view[1].y - p.y) * px_per_m}; }
+};
+
+PlotFrame plot_frame(const std::array<Vec2, 2>& view, int size) {
+  PlotFrame pf;
+  pf.view = view;
+  pf.text = size >= 400 ? 2 : 1;
+  const int text = pf.text;
+  const int left = 34 * text, bottom = 26 * text, top = 26 * text, right = 8 * text;
+  const double view_w = view[1].x - view[0].x, view_h = view[1].y - view[0].y;
+  pf.px_per_m = std::min((size - left - right) / view_w, (size - top - bottom) / view_h);
+  pf.plot_w = static_cast<int>(view_w * pf.px_per_m);
+  pf.plot_h = static_cast<int>(view_h * pf.px_per_m);
+  pf.x0 = left + (size - left - right - pf.plot_w) / 2;
+  pf.y0 = top + (size - top - bottom - pf.plot_h) / 2;
+  return pf;
+}
+
+// The field: each pixel takes its cell's value (cell centres are the field's samples), coloured
+// over [lo, range_max].
+void paint_field(RgbImage& plot, const PlotFrame& pf, const fluid::Field& f, FieldQuantity quantity, double lo,
+                 double range_max) {
+  const fluid::MacGrid& g = f.grid();
+  for (int py = 0; py < pf.plot_h; ++py)
+    for (int px = 0; px < pf.plot_w; ++px) {
+      const Vec2 w{pf.view[0].x + (px + 0.5) / pf.px_per_m, pf.view[1].y - (py + 0.5) / pf.px_per_m};
+      const int i = static_cast<int>(std::floor((w.x - g.origin_m.x) / g.dx()));
+      const int j = static_cast<int>(std::floor((w.y - g.origin_m.y) / g.dy()));
+      if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
+      plot.set(px, py, colour_at(quantity, (f(i, j) - lo) / (range_max - lo)));
+    }
+}
+
+// Velocity arrows (optional), tracers, thin segments (scheduled springs) and the body's segments.
+void draw_overlays(RgbImage& plot, const PlotFrame& pf, const FieldPicture& panel, const fluid::FlowState& s,
+                   const FieldPictureOptions& options, Rgb ink) {
+  if (options.arrows)
+    for (const auto& [p, d] : arrow_lattice(s, options.arrows_per_side)) {
+      if (norm(d) < 1e-12) continue;
+      for (const auto& seg : arrow_segments(p, d)) {
+        const Vec2 a = pf.to_px(seg[0]), b = pf.to_px(seg[1]);
+        draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, ink);
+      }
+    }
+  for (Vec2 p : panel.tracers_m) {
+    const Vec2 q = pf.to_px(p);
+    draw_disc(plot, q.x, q.y, 1.2, Rgb{230, 30, 160});
+  }
+  for (const auto& seg : panel.thin_segments_m) {
+    const Vec2 a = pf.to_px(seg[0]), b = pf.to_px(seg[1]);
+    draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, Rgb{30, 110, 240});
+  }
+  for (const auto& seg : panel.segments_m) {
+    const Vec2 a = pf.to_px(seg[0]), b = pf.to_px(seg[1]);
+    draw_segment(plot, a.x, a.y, b.x, b.y, 2.5, ink);
+  }
+}
+
+// Frame, ticks and axis labels around the plot area.
+void draw_axes(RgbImage& image, const PlotFrame& pf, Rgb ink) {
+  const int x0 = pf.x0, y0 = pf.y0, plot_w = pf.plot_w, plot_h = pf.plot_h, text = pf.text;
+  draw_segment(image, x0, y0, x0 + plot_w, y0, 1.0, ink);
+  draw_segment(image, x0, y0 + plot_h, x0 + plot_w, y0 + plot_h, 1.0, ink);
+  draw_segment(image, x0, y0, x0, y0 + plot_h, 1.0, ink);
+  draw_segment(image, x0 + plot_w, y0, x0 + plot_w, y0 + plot_h, 1.0, ink);
+  for (double v : ticks(pf.view[0].x, pf.view[1].x)) {
+    const double x = x0 + (v - pf.view[0].x) * pf.px_per_m;
+    draw_segment(image, x, y0 + plot_h, x, y0 + plot_h - 4 * text, 1.0, ink);
+    draw_text(image, static_cast<int>(x) - 6 * text, y0 + plot_h + 3 * text, tick_text(v), text, ink);
+  }
+  for (double v : ticks(pf.view[0].y, pf.view[1].y)) {
+    const double y = y0 + (pf.view[1].y - v) * pf.px_per_m;
+    draw_segment(image, x0, y, x0 + 4 * text, y, 1.0, ink);
+    draw_text(image, std::max(0, x0 - static_cast<int>(tick_text(v).size()) * 5 * text - 3 * text),
+              static_cast<int>(y) - 3 * text, tick_text(v), text, ink);
+  }
+  draw_text(image, x0 + plot_w / 2 - 15 * text, y0 + plot_h + 13 * text, "x (m)", text, ink);
+  draw_text(image, 2, y0 - 11 * text, "y (m)", text, ink);
+}
+
 }  // namespace
 
 RgbImage draw_field_picture(const FieldPicture& panel, const FieldPictureOptions& options) {
@@ -216,67 +303,18 @@ RgbImage draw_field_picture(const FieldPicture& panel, const FieldPictureOptions
   const double range_max = colour_range(f, options);
   const std::array<Vec2, 2> view = panel.view_m ? *panel.view_m
                                                 : std::array<Vec2, 2>{g.origin_m, g.origin_m + Vec2{g.width_m, g.height_m}};
-  const int size = options.panel_px, text = size >= 400 ? 2 : 1;
-  const int left = 34 * text, bottom = 26 * text, top = 26 * text, right = 8 * text;
-  // The plot area keeps the view's aspect ratio, centred in what the margins leave.
-  const double view_w = view[1].x - view[0].x, view_h = view[1].y - view[0].y;
-  const double px_per_m = std::min((size - left - right) / view_w, (size - top - bottom) / view_h);
-  const int plot_w = static_cast<int>(view_w * px_per_m), plot_h = static_cast<int>(view_h * px_per_m);
-  const int x0 = left + (size - left - right - plot_w) / 2, y0 = top + (size - top - bottom - plot_h) / 2;
+  const int size = options.panel_px;
+  const PlotFrame pf = plot_frame(view, size);
   const Rgb ink{20, 20, 20};
   RgbImage image(size, size, Rgb{255, 255, 255});
-  RgbImage plot(plot_w, plot_h, Rgb{255, 255, 255});
-  const auto to_px = [&](Vec2 p) { return Vec2{(p.x - view[0].x) * px_per_m, (view[1].y - p.y) * px_per_m}; };
-  // The field: each pixel takes its cell's value (cell centres are the field's samples).
+  RgbImage plot(pf.plot_w, pf.plot_h, Rgb{255, 255, 255});
   const double lo = options.quantity == FieldQuantity::speed ? 0.0 : -range_max;
-  for (int py = 0; py < plot_h; ++py)
-    for (int px = 0; px < plot_w; ++px) {
-      const Vec2 w{view[0].x + (px + 0.5) / px_per_m, view[1].y - (py + 0.5) / px_per_m};
-      const int i = static_cast<int>(std::floor((w.x - g.origin_m.x) / g.dx()));
-      const int j = static_cast<int>(std::floor((w.y - g.origin_m.y) / g.dy()));
-      if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) continue;
-      plot.set(px, py, colour_at(options.quantity, (f(i, j) - lo) / (range_max - lo)));
-    }
-  if (options.arrows)
-    for (const auto& [p, d] : arrow_lattice(s, options.arrows_per_side)) {
-      if (norm(d) < 1e-12) continue;
-      for (const auto& seg : arrow_segments(p, d)) {
-        const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
-        draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, ink);
-      }
-    }
-  for (Vec2 p : panel.tracers_m) {
-    const Vec2 q = to_px(p);
-    draw_disc(plot, q.x, q.y, 1.2, Rgb{230, 30, 160});
-  }
-  for (const auto& seg : panel.thin_segments_m) {
-    const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
-    draw_segment(plot, a.x, a.y, b.x, b.y, 1.0, Rgb{30, 110, 240});
-  }
-  for (const auto& seg : panel.segments_m) {
-    const Vec2 a = to_px(seg[0]), b = to_px(seg[1]);
-    draw_segment(plot, a.x, a.y, b.x, b.y, 2.5, ink);
-  }
-  paste(image, plot, x0, y0);
-  // Frame, ticks and labels.
-  draw_segment(image, x0, y0, x0 + plot_w, y0, 1.0, ink);
-  draw_segment(image, x0, y0 + plot_h, x0 + plot_w, y0 + plot_h, 1.0, ink);
-  draw_segment(image, x0, y0, x0, y0 + plot_h, 1.0, ink);
-  draw_segment(image, x0 + plot_w, y0, x0 + plot_w, y0 + plot_h, 1.0, ink);
-  for (double v : ticks(view[0].x, view[1].x)) {
-    const double x = x0 + (v - view[0].x) * px_per_m;
-    draw_segment(image, x, y0 + plot_h, x, y0 + plot_h - 4 * text, 1.0, ink);
-    draw_text(image, static_cast<int>(x) - 6 * text, y0 + plot_h + 3 * text, tick_text(v), text, ink);
-  }
-  for (double v : ticks(view[0].y, view[1].y)) {
-    const double y = y0 + (view[1].y - v) * px_per_m;
-    draw_segment(image, x0, y, x0 + 4 * text, y, 1.0, ink);
-    draw_text(image, std::max(0, x0 - static_cast<int>(tick_text(v).size()) * 5 * text - 3 * text),
-              static_cast<int>(y) - 3 * text, tick_text(v), text, ink);
-  }
-  draw_text(image, x0 + plot_w / 2 - 15 * text, y0 + plot_h + 13 * text, "x (m)", text, ink);
-  draw_text(image, 2, y0 - 11 * text, "y (m)", text, ink);
-  draw_text(image, x0, 3 * text, panel.caption + "  [" + range_caption(options.quantity, range_max) + "]", text, ink);
+  paint_field(plot, pf, f, options.quantity, lo, range_max);
+  draw_overlays(plot, pf, panel, s, options, ink);
+  paste(image, plot, pf.x0, pf.y0);
+  draw_axes(image, pf, ink);
+  draw_text(image, pf.x0, 3 * pf.text, panel.caption + "  [" + range_caption(options.quantity, range_max) + "]",
+            pf.text, ink);
   return image;
 }
 

@@ -534,10 +534,10 @@ void OffscreenRenderer::Impl::draw_background() {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-std::array<std::pair<std::size_t, std::size_t>, 5> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
-                                                                                     Vec3 eye) {
-  // Interleaved float position and normal; the vertex shader subtracts the camera target
-  // (`origin`) before projecting.
+namespace {
+
+// Interleaved float position and normal, six floats per vertex.
+void interleave_vertices(const geometry::Mesh& mesh, std::vector<float>& vertex_data) {
   const std::size_t nv = mesh.vertex_count();
   vertex_data.resize(nv * 6);
   float* out = vertex_data.data();
@@ -550,6 +550,37 @@ std::array<std::pair<std::size_t, std::size_t>, 5> OffscreenRenderer::Impl::uplo
     out[6 * v + 4] = static_cast<float>(n.y);
     out[6 * v + 5] = static_cast<float>(n.z);
   }
+}
+
+// The umbrella's triangles (every part but tentacles, obstacles and snow) by facing as seen from
+// `eye`: back faces appended at `fill`, front faces collected from `front` toward the start
+// (reversed by triangle); edge-on ones dropped.
+void split_umbrella_faces(const geometry::Mesh& mesh, Vec3 eye, std::vector<std::uint32_t>& index_data,
+                          std::size_t& fill, std::size_t& front) {
+for (const geometry::MeshPart& part : mesh.parts) {
+  if (part.name == "tentacles" || part.name == "obstacles" || part.name == "snow") continue;
+  const std::uint32_t* idx = mesh.indices.data() + part.first_index;
+  for (std::uint32_t t = 0; t + 2 < part.index_count; t += 3) {
+    const Vec3 a = mesh.positions[idx[t]], b = mesh.positions[idx[t + 1]], c = mesh.positions[idx[t + 2]];
+    const double facing = geometry::dot(geometry::cross(b - a, c - a), eye - a);
+    if (facing < 0.0) {
+      std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(fill));
+      fill += 3;
+    } else if (facing > 0.0) {
+      front -= 3;
+      std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(front));
+    }  // edge-on: culled in both passes, not drawn
+  }
+}
+}
+
+}  // namespace
+
+std::array<std::pair<std::size_t, std::size_t>, 5> OffscreenRenderer::Impl::upload(const geometry::Mesh& mesh,
+                                                                                     Vec3 eye) {
+  // Interleaved float position and normal; the vertex shader subtracts the camera target
+  // (`origin`) before projecting.
+  interleave_vertices(mesh, vertex_data);
   // Draw order: the opaque obstacles, the tentacles, then the translucent umbrella's back faces,
   // then its front faces, each in mesh order — what culling front faces and then back faces in two
   // passes draws, in one pass. Facing as OpenGL decides it for a counter-clockwise-outside mesh:
@@ -572,21 +603,7 @@ std::array<std::pair<std::size_t, std::size_t>, 5> OffscreenRenderer::Impl::uplo
   ranges[4] = copy_part("snow");
   ranges[0] = copy_part("tentacles");
   std::size_t front = index_data.size();  // front faces are collected from the end, then reversed
-  for (const geometry::MeshPart& part : mesh.parts) {
-    if (part.name == "tentacles" || part.name == "obstacles" || part.name == "snow") continue;
-    const std::uint32_t* idx = mesh.indices.data() + part.first_index;
-    for (std::uint32_t t = 0; t + 2 < part.index_count; t += 3) {
-      const Vec3 a = mesh.positions[idx[t]], b = mesh.positions[idx[t + 1]], c = mesh.positions[idx[t + 2]];
-      const double facing = geometry::dot(geometry::cross(b - a, c - a), eye - a);
-      if (facing < 0.0) {
-        std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(fill));
-        fill += 3;
-      } else if (facing > 0.0) {
-        front -= 3;
-        std::copy_n(idx + t, 3, index_data.begin() + static_cast<long>(front));
-      }  // edge-on: culled in both passes, not drawn
-    }
-  }
+  split_umbrella_faces(mesh, eye, index_data, fill, front);
   ranges[1] = {ranges[0].first + ranges[0].second, fill - ranges[0].first - ranges[0].second};
   // Front faces lie reversed (by triangle) at the end; restore mesh order right after the back faces.
   const std::size_t front_count = index_data.size() - front, front_triangles = front_count / 3;

@@ -8,7 +8,7 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 using namespace param;
 
 Parameter scene_kind(const std::string& name) {
@@ -172,7 +172,7 @@ const ParameterTable& integrator_order_scene() {
   return table;
 }
 
-IntegratorOrderScene read_integrator_order(const io::Config& c) {
+IntegratorOrderScene read_integrator_order(const config::Config& c) {
   const Reader r(c, integrator_order_scene());
   IntegratorOrderScene s;
   s.point_mass = r.number("problem.point_mass");
@@ -193,7 +193,7 @@ const ParameterTable& stages_scene() {
   return table;
 }
 
-StagesScene read_stages_scene(const io::Config& c) {
+StagesScene read_stages_scene(const config::Config& c) {
   const Reader r(c, stages_scene());
   StagesScene s;
   s.bell.diameter_m = r.number("bell.diameter");
@@ -218,7 +218,7 @@ const ParameterTable& jellyfish_study_rules() {
   return table;
 }
 
-InstabilityFigure read_instability_figure(const io::Config& c) {
+InstabilityFigure read_instability_figure(const config::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   InstabilityFigure f;
   f.panels = static_cast<int>(r.integer("figure.panels"));
@@ -227,7 +227,7 @@ InstabilityFigure read_instability_figure(const io::Config& c) {
   return f;
 }
 
-SweepScene read_sweep(const io::Config& c) {
+SweepScene read_sweep(const config::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   SweepScene s;
   s.frequencies = r.numbers("sweep.frequencies");
@@ -236,7 +236,7 @@ SweepScene read_sweep(const io::Config& c) {
   return s;
 }
 
-FluidlessScene read_fluidless(const io::Config& c) {
+FluidlessScene read_fluidless(const config::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   FluidlessScene s;
   s.model.drag_kg_per_s = r.number("fluidless.drag");
@@ -252,7 +252,7 @@ FluidlessScene read_fluidless(const io::Config& c) {
   return s;
 }
 
-SteeringScene read_steering(const io::Config& c) {
+SteeringScene read_steering(const config::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   SteeringScene s;
   s.target_offset = r.vec2("steering.target_offset");
@@ -262,7 +262,7 @@ SteeringScene read_steering(const io::Config& c) {
   return s;
 }
 
-ResonanceScene read_resonance(const io::Config& c) {
+ResonanceScene read_resonance(const config::Config& c) {
   const Reader r(c, jellyfish_study_rules());
   ResonanceScene s;
   s.hold_s = r.number("resonance.hold");
@@ -274,7 +274,7 @@ ResonanceScene read_resonance(const io::Config& c) {
   return s;
 }
 
-std::vector<double> read_coupling_stability_steps(const io::Config& c) {
+std::vector<double> read_coupling_stability_steps(const config::Config& c) {
   return Reader(c, jellyfish_study_rules()).numbers("study.time_steps");
 }
 
@@ -283,7 +283,7 @@ const ParameterTable& hoover_miller_rules() {
   return table;
 }
 
-HooverMillerFields read_hoover_miller_fields(const io::Config& c) {
+HooverMillerFields read_hoover_miller_fields(const config::Config& c) {
   const Reader r(c, hoover_miller_rules());
   HooverMillerFields f;
   f.re = r.number("re");
@@ -300,7 +300,7 @@ const ParameterTable& axisymmetric_vs_planar_rules() {
   return table;
 }
 
-int read_axisymmetric_vs_planar_cycles(const io::Config& c) {
+int read_axisymmetric_vs_planar_cycles(const config::Config& c) {
   return static_cast<int>(Reader(c, axisymmetric_vs_planar_rules()).integer("cycles"));
 }
 

@@ -16,7 +16,7 @@ namespace jellysim::scene {
 
 namespace {
 
-using io::Range;
+using config::Range;
 constexpr double kDegree = std::numbers::pi / 180.0;
 const Range kPositive = Range::positive();
 const Range kNonNegative = Range::non_negative();
@@ -64,8 +64,9 @@ const char* const kPreamble =
     "#   type = \"ib2d\" (files = \"path/stem\" or model = \"hoover-miller\", [[objects.schedules]]): a structure\n"
     "#   in IB2d's terms, its springs' rest lengths or stiffnesses on a schedule (docs/ib2d.md).\n";
 
-ParameterTable make_jellyfish_scene() {
-  std::vector<Parameter> p{
+/// The scene kind, its duration, [[objects]] and the tank (§7.1).
+std::vector<Parameter> scene_and_tank_parameters() {
+  return {
       {"scene", Type::text, "\"jellyfish\"", "", {}, {}, 0, "the scene kind"},
       number("duration", "7.142857142857143", "s", kPositive,
              "simulated time: 5 contraction cycles at 0.7 Hz (the convergence study's; 10 reach the lid)"),
@@ -102,7 +103,12 @@ ParameterTable make_jellyfish_scene() {
              "of revolution about the centre line, the water 3D around it (docs/jellyfish.md)"),
       boolean("tank.half_tank", "true",
               "while the symmetry is kept, solve only the east half (a symmetry plane on the centre line)"),
+  };
+}
 
+/// The jellyfish: where it is, its body (Fig. 8.21) and its continuum material.
+std::vector<Parameter> jellyfish_body_parameters() {
+  return {
       boolean("jellyfish.enabled", "true",
               "false: no jellyfish here (e.g. flow past obstacles); [[objects]] may still add some"),
       vec2("jellyfish.position", "[0.12, 0.08]", "m", kAny, "aperture centre, inside the tank"),
@@ -135,6 +141,12 @@ ParameterTable make_jellyfish_scene() {
              "continuum: the bell's mass per metre of arc and of depth (the fluid-free model; coupled markers are massless)"),
       number("jellyfish.tentacle_line_density", "2.571", "kg/m²", kMaterial,
              "continuum: a tentacle's mass per metre of length and of depth (the fluid-free model)"),
+  };
+}
+
+/// The thesis model's moduli, the stroke (§6.2, §7.1) and steering.
+std::vector<Parameter> jellyfish_stroke_parameters() {
+  return {
       number("jellyfish.bell_modulus", "1.186e6", "Pa", kModulus,
              "thesis: λ of the bell mesoglea (Fig. 8.12: stable with the semi-implicit coupling)"),
       number("jellyfish.muscle_modulus", "4.0e5", "Pa", kModulusOrZero, "thesis: λ of the circumferential muscle (§7.1)"),
@@ -166,7 +178,12 @@ ParameterTable make_jellyfish_scene() {
              "largest extra bend of the steering side, shared by its joints"),
       number("jellyfish.steer_damping", "1.5", "cycles", kNonNegative,
              "the last cycle's turn, times this, is subtracted from the heading error"),
+  };
+}
 
+/// The coupling (§4.3), the stability limits and the outputs.
+std::vector<Parameter> coupling_and_output_parameters() {
+  return {
       choice("coupling.scheme", "semi-implicit", coupling::scheme_names(),
              "semi-implicit (backward Euler exchange, GMRES) or explicit (thesis)"),
       choice("coupling.kernel", "bilinear", {"bilinear", "peskin4"},
@@ -204,6 +221,13 @@ ParameterTable make_jellyfish_scene() {
              "width of the picture; 0: the whole tank, else at least 0.01"),
       boolean("output.vtk", "true", "fluid fields, tracers and the body per frame (frames/*.vti, *.vtp, jellyfish.pvd)"),
   };
+}
+
+ParameterTable make_jellyfish_scene() {
+  std::vector<Parameter> p;
+  for (auto section : {scene_and_tank_parameters, jellyfish_body_parameters, jellyfish_stroke_parameters,
+                       coupling_and_output_parameters})
+    for (Parameter& q : section()) p.push_back(std::move(q));
   return ParameterTable("jellyfish", kPreamble, std::move(p));
 }
 
@@ -224,7 +248,7 @@ void refuse_other_models_fields(const Reader& r, jellyfish::ElasticModel model) 
     const std::string key = std::string("jellyfish.") + field;
     const double value = r.number(key);
     if (value == std::stod(r.table().at(key).value)) continue;
-    throw InputError("field '" + key + "' = " + io::format_number(value) + " belongs to jellyfish.elastic_model = \"" +
+    throw InputError("field '" + key + "' = " + config::format_number(value) + " belongs to jellyfish.elastic_model = \"" +
                      (continuum ? "thesis" : "continuum") + "\", but the model is \"" + (continuum ? "continuum" : "thesis") +
                      "\": set jellyfish.elastic_model = \"" + (continuum ? "thesis" : "continuum") + "\" or use " +
                      (continuum ? "stretching_stiffness, bending_rigidity, muscle_stiffness and the tentacle_ fields"
@@ -233,32 +257,8 @@ void refuse_other_models_fields(const Reader& r, jellyfish::ElasticModel model) 
   }
 }
 
-/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
-jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::TankSpec& t) {
-  const Reader r(c, jellyfish_scene());
-  jellyfish::JellyfishSpec j;
-  j.aperture_centre_m = r.vec2("jellyfish.position");
-  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
-        j.aperture_centre_m.y < t.height_m))
-    throw InputError("field 'jellyfish.position' = [" + io::format_number(j.aperture_centre_m.x) + ", " +
-                     io::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
-                     io::format_number(t.width_m) + "] x [0, " + io::format_number(t.height_m) + "]");
-  j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
-  j.diameter_m = r.number("jellyfish.diameter");
-  j.height_m = r.number("jellyfish.height");
-  j.tentacle_length_m = r.number("jellyfish.tentacle_length");
-  if (j.tentacle_length_m > 0 && j.tentacle_length_m < kMinBodyLength)
-    throw InputError("field 'jellyfish.tentacle_length' = " + io::format_number(j.tentacle_length_m) +
-                     " is out of range: 0 (no tentacles) or [" + io::format_number(kMinBodyLength) + ", 100] m");
-  j.thickness_m = r.number("jellyfish.thickness");
-  j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
-                                                                       : jellyfish::UmbrellaModel::angular;
-  const double spacing = r.number("jellyfish.spacing");
-  j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
-  j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
-  j.elastic_model = r.choice("jellyfish.elastic_model") == "thesis" ? jellyfish::ElasticModel::thesis
-                                                                    : jellyfish::ElasticModel::continuum;
-  refuse_other_models_fields(r, j.elastic_model);
+/// The bell's and tentacles' elastic constants of both models (continuum material; the thesis's moduli).
+void read_elastic_constants(const Reader& r, jellyfish::JellyfishSpec& j) {
   jellyfish::ContinuumMaterial& m = j.material;
   m.stretching_n_per_m = r.number("jellyfish.stretching_stiffness");
   m.bending_n_m = r.number("jellyfish.bending_rigidity");
@@ -272,6 +272,35 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
   j.bending_factor = r.number("jellyfish.bending_factor");
   j.tentacle_volume_fraction = r.number("jellyfish.tentacle_volume_fraction");
   j.tentacle_bending_factor = r.number("jellyfish.tentacle_bending_factor");
+}
+
+/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
+jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling::TankSpec& t) {
+  const Reader r(c, jellyfish_scene());
+  jellyfish::JellyfishSpec j;
+  j.aperture_centre_m = r.vec2("jellyfish.position");
+  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
+        j.aperture_centre_m.y < t.height_m))
+    throw InputError("field 'jellyfish.position' = [" + config::format_number(j.aperture_centre_m.x) + ", " +
+                     config::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     config::format_number(t.width_m) + "] x [0, " + config::format_number(t.height_m) + "]");
+  j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
+  j.diameter_m = r.number("jellyfish.diameter");
+  j.height_m = r.number("jellyfish.height");
+  j.tentacle_length_m = r.number("jellyfish.tentacle_length");
+  if (j.tentacle_length_m > 0 && j.tentacle_length_m < kMinBodyLength)
+    throw InputError("field 'jellyfish.tentacle_length' = " + config::format_number(j.tentacle_length_m) +
+                     " is out of range: 0 (no tentacles) or [" + config::format_number(kMinBodyLength) + ", 100] m");
+  j.thickness_m = r.number("jellyfish.thickness");
+  j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
+                                                                       : jellyfish::UmbrellaModel::angular;
+  const double spacing = r.number("jellyfish.spacing");
+  j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
+  j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
+  j.elastic_model = r.choice("jellyfish.elastic_model") == "thesis" ? jellyfish::ElasticModel::thesis
+                                                                    : jellyfish::ElasticModel::continuum;
+  refuse_other_models_fields(r, j.elastic_model);
+  read_elastic_constants(r, j);
   j.frequency_hz = r.number("jellyfish.frequency");
   j.gamma = r.number("jellyfish.gamma");
   j.profile.shape = *jellyfish::contraction_shape_from_string(
@@ -301,10 +330,10 @@ jellyfish::JellyfishSpec read_jellyfish(const io::Config& c, const coupling::Tan
 /// The scene's [[objects]]: more jellyfish (any [jellyfish] field overrides the template), rigid
 /// obstacles (circle, box, polygon), each with an optional prescribed path, and IB2d structures;
 /// each type's fields are a table (scene/objects.hpp).
-void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
+void read_objects(const config::Config& c, jellyfish::SwimSettings& s) {
   const std::size_t count = c.array_size("objects");
   for (std::size_t k = 0; k < count; ++k) {
-    io::Config o = c.element("objects", k);
+    config::Config o = c.element("objects", k);
     const std::string where = "objects[" + std::to_string(k) + "]";
     if (!o.has("type")) throw InputError(where + ": missing field 'type' (jellyfish, circle, box, polygon or ib2d)");
     std::string type;
@@ -317,7 +346,7 @@ void read_objects(const io::Config& c, jellyfish::SwimSettings& s) {
     try {
       if (type == "jellyfish") {
         o.erase("type");
-        io::Config jc = c;
+        config::Config jc = c;
         jc.merge(o.nested_under("jellyfish"));
         s.school.push_back(read_jellyfish(jc, s.tank));
       } else if (type == "ib2d") {
@@ -351,7 +380,7 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
     for (const auto& [field, value] : sizes)
       if (value > diagonal)
         throw InputError("jellyfish " + std::to_string(k + 1) + " cannot fit in the tank: its " + field + " " +
-                         io::format_number(value) + " m exceeds the tank's diagonal " + io::format_number(diagonal) +
+                         config::format_number(value) + " m exceeds the tank's diagonal " + config::format_number(diagonal) +
                          " m (field 'jellyfish." + field + "')");
   }
   const jellyfish::MemoryEstimate e = jellyfish::estimate_memory(s);
@@ -364,23 +393,9 @@ void check_size_and_memory(const jellyfish::SwimSettings& s) {
                      "jellyfish.spacing, record fewer frames (output.frame_interval) or raise --memory-limit");
 }
 
-}  // namespace
-
-jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
-  const Reader r(c, jellyfish_scene());
-  r.validate_all();
-  jellyfish::SwimSettings s;
-  s.duration_s = r.number("duration");
-  s.frame_interval_s = r.number("output.frame_interval");
-  if (s.frame_interval_s > s.duration_s)
-    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
-                     " is out of range (0, duration = " + io::format_number(s.duration_s) + "]");
-  if (!(s.duration_s / s.frame_interval_s <= kMaxFrames))
-    throw InputError("fields 'duration' = " + io::format_number(s.duration_s) + " s and 'output.frame_interval' = " +
-                     io::format_number(s.frame_interval_s) + " s ask for " + io::format_number(s.duration_s / s.frame_interval_s) +
-                     " frames; at most " + io::format_number(kMaxFrames) + " (raise the interval or shorten the run)");
-
-  coupling::TankSpec& t = s.tank;
+/// The tank: size, grid, fluid solver, water, sides, tracers, current, symmetry and geometry (§7.1).
+coupling::TankSpec read_tank(const Reader& r) {
+  coupling::TankSpec t;
   t.width_m = r.number("tank.width");
   t.height_m = r.number("tank.height");
   const auto cells = r.integers("tank.cells");
@@ -413,11 +428,13 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   t.symmetry = symmetry == "auto"     ? coupling::MirrorSymmetry::automatic
                : symmetry == "mirror" ? coupling::MirrorSymmetry::mirror
                                       : coupling::MirrorSymmetry::none;
+  return t;
+}
 
-  if (r.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
-  read_objects(c, s);
-
-  coupling::CouplingSettings& k = s.coupling;
+/// The coupling (§4.3) and its step limits; a smallest step above the largest, or above the frame
+/// interval, is an input error (not a numerical instability at t = 0).
+coupling::CouplingSettings read_coupling(const Reader& r, double frame_interval_s) {
+  coupling::CouplingSettings k;
   k.scheme = *coupling::scheme_from_string(r.choice("coupling.scheme"));
   k.kernel = *coupling::kernel_from_string(r.choice("coupling.kernel"));
   k.safety_factor = r.number("coupling.safety_factor");
@@ -425,17 +442,41 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
   k.min_time_step_s = r.number("coupling.min_dt");
   // Contradictions are input errors, not a numerical instability at t = 0.
   if (!(k.min_time_step_s < k.max_time_step_s))
-    throw InputError("field 'coupling.min_dt' = " + io::format_number(k.min_time_step_s) +
-                     " must be below coupling.max_dt = " + io::format_number(k.max_time_step_s));
-  if (!(s.frame_interval_s >= k.min_time_step_s))
-    throw InputError("field 'output.frame_interval' = " + io::format_number(s.frame_interval_s) +
-                     " is below coupling.min_dt = " + io::format_number(k.min_time_step_s) +
+    throw InputError("field 'coupling.min_dt' = " + config::format_number(k.min_time_step_s) +
+                     " must be below coupling.max_dt = " + config::format_number(k.max_time_step_s));
+  if (!(frame_interval_s >= k.min_time_step_s))
+    throw InputError("field 'output.frame_interval' = " + config::format_number(frame_interval_s) +
+                     " is below coupling.min_dt = " + config::format_number(k.min_time_step_s) +
                      ": steps land on every frame, so each would be shorter than the smallest allowed");
   k.krylov_tolerance = r.number("coupling.krylov_tolerance");
   k.krylov_max_iterations = static_cast<int>(r.integer("coupling.krylov_max_iterations"));
   k.preconditioner = *coupling::preconditioner_from_string(r.choice("coupling.preconditioner"));
   k.mobility_rebuild_cells = r.number("coupling.mobility_rebuild");
   k.threads = static_cast<int>(r.integer("coupling.threads"));
+  return k;
+}
+
+}  // namespace
+
+jellyfish::SwimSettings read_swim_settings(const config::Config& c) {
+  const Reader r(c, jellyfish_scene());
+  r.validate_all();
+  jellyfish::SwimSettings s;
+  s.duration_s = r.number("duration");
+  s.frame_interval_s = r.number("output.frame_interval");
+  if (s.frame_interval_s > s.duration_s)
+    throw InputError("field 'output.frame_interval' = " + config::format_number(s.frame_interval_s) +
+                     " is out of range (0, duration = " + config::format_number(s.duration_s) + "]");
+  if (!(s.duration_s / s.frame_interval_s <= kMaxFrames))
+    throw InputError("fields 'duration' = " + config::format_number(s.duration_s) + " s and 'output.frame_interval' = " +
+                     config::format_number(s.frame_interval_s) + " s ask for " + config::format_number(s.duration_s / s.frame_interval_s) +
+                     " frames; at most " + config::format_number(kMaxFrames) + " (raise the interval or shorten the run)");
+
+  const coupling::TankSpec& t = s.tank = read_tank(r);
+  if (r.boolean("jellyfish.enabled")) s.school.push_back(read_jellyfish(c, t));
+  read_objects(c, s);
+
+  s.coupling = read_coupling(r, s.frame_interval_s);
 
   s.limits.max_speed_m_per_s = r.number("stability.max_speed");
   s.limits.max_strain = r.number("stability.max_strain");
@@ -458,11 +499,11 @@ jellyfish::SwimSettings read_swim_settings(const io::Config& c) {
 }
 
 
-double read_picture_zoom(const io::Config& c) {
+double read_picture_zoom(const config::Config& c) {
   const double zoom = Reader(c, jellyfish_scene()).number("output.picture_zoom");
   if (zoom != 0.0 && zoom < kMinPictureZoom)
-    throw InputError("field 'output.picture_zoom' = " + io::format_number(zoom) + " is out of range: 0 (the whole " +
-                     "tank) or [" + io::format_number(kMinPictureZoom) + ", 1000] bell diameters");
+    throw InputError("field 'output.picture_zoom' = " + config::format_number(zoom) + " is out of range: 0 (the whole " +
+                     "tank) or [" + config::format_number(kMinPictureZoom) + ", 1000] bell diameters");
   return zoom;
 }
 

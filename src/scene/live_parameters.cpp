@@ -11,9 +11,9 @@ namespace jellysim::scene {
 const ParameterTable& viewer_controls() {
   static const ParameterTable table(
       "viewer", "",
-      {{"view.speed", Type::number, "1.0", "", io::Range{0.0, 10.0, true, false}, {}, 0,
+      {{"view.speed", Type::number, "1.0", "", config::Range{0.0, 10.0, true, false}, {}, 0,
         "simulated seconds wanted per wall second (`jellysim view --speed`)", Slider{0.05, 4.0, true}},
-       {"view.stiffness", Type::number, "1.0", "", io::Range{0.0, 100.0, true, false}, {}, 0,
+       {"view.stiffness", Type::number, "1.0", "", config::Range{0.0, 100.0, true, false}, {}, 0,
         "factor on every spring constant of one jellyfish (bell, muscle and tentacles)", Slider{0.25, 4.0, true}}});
   return table;
 }

@@ -20,7 +20,7 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 constexpr double kDegree = std::numbers::pi / 180.0;
 const Range kStiffness{0.0, 1e9, true, false};  ///< N/m of an obstacle's tethers (issue 23: an upper bound)
 
@@ -96,7 +96,7 @@ ParameterTable make_schedule() {
 }
 
 /// Fails on fields an object of this type does not have: the table lists them all.
-void require_known_fields(const io::Config& o, const ParameterTable& table, const std::string& where) {
+void require_known_fields(const config::Config& o, const ParameterTable& table, const std::string& where) {
   for (const std::string& k : o.keys())
     if (!table.find(k)) {
       std::string list;
@@ -162,7 +162,7 @@ std::vector<Vec2> read_polygon_file(const std::string& path, const std::string& 
 
 /// The polygon's vertices: exactly one of `points` = [x0, y0, x1, y1, ...] or `file`.
 std::vector<Vec2> read_polygon(const Reader& r, const std::string& where) {
-  const io::Config& o = r.config();
+  const config::Config& o = r.config();
   if (o.has("points") == o.has("file"))
     throw InputError(where + ": a polygon needs exactly one of 'points' = [x0, y0, x1, y1, ...] or 'file'");
   if (o.has("file")) return read_polygon_file(r.text("file"), where);
@@ -175,7 +175,7 @@ std::vector<Vec2> read_polygon(const Reader& r, const std::string& where) {
 
 /// The shape's own fields of an obstacle (centre, radius, size, angle_deg; a polygon's vertices).
 void read_shape(const Reader& r, const std::string& where, jellyfish::ObstacleSpec& spec) {
-  const io::Config& o = r.config();
+  const config::Config& o = r.config();
   auto required = [&](const char* key) {
     if (!o.has(key)) throw InputError(where + ": missing field '" + key + "'");
   };
@@ -197,7 +197,7 @@ void read_shape(const Reader& r, const std::string& where, jellyfish::ObstacleSp
 
 /// One [[objects.schedules]] table of an IB2d object: a column of a run of its springs as a law of t.
 /// `muscles`: the rows of a generated model's muscle springs (empty when the object has none).
-jellyfish::SpringSchedule read_schedule(const io::Config& o, const std::string& where,
+jellyfish::SpringSchedule read_schedule(const config::Config& o, const std::string& where,
                                         std::optional<std::array<int, 2>> muscles) {
   const Reader r(o, object_parameters("schedules"));
   require_known_fields(o, r.table(), where);
@@ -232,8 +232,8 @@ jellyfish::HooverMillerBell generated_model(const Reader& r, const std::string& 
   } else {
     const double n = std::round(8.0 * tank.cells_y / tank.height_m);
     if (!(n >= 16 && n <= 4096))
-      throw InputError(where + ": the tank's mesh width " + io::format_number(tank.height_m / tank.cells_y) +
-                       " m gives IB2d's N = 8 m / mesh width = " + io::format_number(n) +
+      throw InputError(where + ": the tank's mesh width " + config::format_number(tank.height_m / tank.cells_y) +
+                       " m gives IB2d's N = 8 m / mesh width = " + config::format_number(n) +
                        ", outside [16, 4096]; set 'resolution'");
     hm.resolution = static_cast<int>(n);
   }
@@ -284,7 +284,7 @@ const ParameterTable& object_parameters(const std::string& type) {
   return found->second;
 }
 
-jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where) {
+jellyfish::ObstacleSpec read_obstacle(const config::Config& o, const std::string& type, const std::string& where) {
   const Reader r(o, object_parameters(type));
   require_known_fields(o, r.table(), where);
   jellyfish::ObstacleSpec spec;
@@ -308,7 +308,7 @@ jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& ty
 /// An IB2d structure: `files` = "path/stem" (IB2d's .vertex, .spring, .d_spring, .beam,
 /// .nonInv_beam, .target; relative to the working directory) or `model` = "hoover-miller" generated
 /// at `resolution` (IB2d's N); moved by `offset`; its springs scheduled by [[objects.schedules]].
-jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::string& where,
+jellyfish::Ib2dObjectSpec read_ib2d_object(const config::Config& o, const std::string& where,
                                            const coupling::TankSpec& tank) {
   const Reader r(o, object_parameters("ib2d"));
   require_known_fields(o, r.table(), where);

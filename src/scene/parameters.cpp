@@ -82,12 +82,12 @@ std::string markdown_cell(std::string s) {
 
 namespace param {
 
-Parameter number(std::string key, std::string value, std::string unit, io::Range range, std::string description,
+Parameter number(std::string key, std::string value, std::string unit, config::Range range, std::string description,
                  Slider slider) {
   return {std::move(key), Type::number, std::move(value), std::move(unit), range, {}, 0, std::move(description), slider};
 }
 Parameter integer(std::string key, std::string value, double min, double max, std::string description) {
-  return {std::move(key), Type::integer, std::move(value), "", io::Range::closed(min, max), {}, 0, std::move(description)};
+  return {std::move(key), Type::integer, std::move(value), "", config::Range::closed(min, max), {}, 0, std::move(description)};
 }
 Parameter boolean(std::string key, std::string value, std::string description) {
   return {std::move(key), Type::boolean, std::move(value), "", {}, {}, 0, std::move(description)};
@@ -95,7 +95,7 @@ Parameter boolean(std::string key, std::string value, std::string description) {
 Parameter choice(std::string key, std::string value, std::vector<std::string> choices, std::string description) {
   return {std::move(key), Type::choice, "\"" + value + "\"", "", {}, std::move(choices), 0, std::move(description)};
 }
-Parameter vec2(std::string key, std::string value, std::string unit, io::Range range, std::string description) {
+Parameter vec2(std::string key, std::string value, std::string unit, config::Range range, std::string description) {
   return {std::move(key), Type::vec2, std::move(value), std::move(unit), range, {}, 0, std::move(description)};
 }
 
@@ -146,7 +146,7 @@ const Parameter& ParameterTable::at(std::string_view key) const {
   throw std::logic_error("parameter table " + name_ + " has no '" + std::string(key) + "'");
 }
 
-std::string ParameterTable::scene_toml(const io::Config* values) const {
+std::string ParameterTable::scene_toml(const config::Config* values) const {
   constexpr std::size_t kCommentColumn = 31, kLineWidth = 110;
   std::ostringstream s;
   s << preamble_;
@@ -182,7 +182,7 @@ std::string ParameterTable::reference_markdown() const {
   return s.str();
 }
 
-io::Config ParameterTable::defaults() const { return io::Config::parse(scene_toml(), "built-in " + name_ + " scene"); }
+config::Config ParameterTable::defaults() const { return config::Config::parse(scene_toml(), "built-in " + name_ + " scene"); }
 
 const Parameter& Reader::expect(std::string_view key, Type type) const {
   const Parameter& p = table_.at(key);
@@ -215,7 +215,7 @@ Vec2 Reader::vec2(std::string_view key) const {
   const Vec2 v = config_.vec2(key);
   for (double x : {v.x, v.y})
     if (!p.range.contains(x))
-      throw InputError("field '" + std::string(key) + "' has element " + io::format_number(x) + " out of range " +
+      throw InputError("field '" + std::string(key) + "' has element " + config::format_number(x) + " out of range " +
                        p.range.describe());
   return v;
 }

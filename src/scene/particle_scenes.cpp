@@ -8,7 +8,7 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 
 /// A rule: the default is each scene's (value left empty).
 Parameter rule(std::string key, Type type, std::string unit, Range range, std::string description,
@@ -16,9 +16,10 @@ Parameter rule(std::string key, Type type, std::string unit, Range range, std::s
   return {std::move(key), type, "", std::move(unit), range, std::move(choices), 0, std::move(description)};
 }
 
-ParameterTable make_rules() {
+/// The time loop, the outputs, the elastic bar and collisions.
+std::vector<Parameter> time_output_and_bar_rules() {
   const Range positive = Range::positive(), non_negative = Range::non_negative();
-  std::vector<Parameter> p{
+  return {
       rule("duration", Type::number, "s", positive, "simulated time"),
       rule("time.integrator", Type::choice, "", {}, "time integrator (docs/integrators.md)", ode::integrator_names()),
       rule("time.dt", Type::number, "s", positive, "step; the first step when adaptive; at most the duration"),
@@ -52,6 +53,13 @@ ParameterTable make_rules() {
       rule("collision.trap_radius", Type::number, "m", Range::closed(0.0, 1.0),
            "a second boundary this close makes a colliding particle trapped (0: off)"),
       rule("run.threads", Type::integer, "", Range::closed(0, 64), "threads of the SPH loops; 0: one per core"),
+  };
+}
+
+/// The SPH fluid box (thesis ch. 5).
+std::vector<Parameter> fluid_rules() {
+  const Range positive = Range::positive(), non_negative = Range::non_negative();
+  return {
       rule("box.min", Type::vec2, "m", {}, "lower-left corner of the fluid box"),
       rule("box.max", Type::vec2, "m", {}, "upper-right corner of the fluid box (above and right of box.min)"),
       rule("fluid.smoothing_radius", Type::number, "m", positive, "SPH smoothing radius h"),
@@ -66,6 +74,13 @@ ParameterTable make_rules() {
       rule("fluid.velocity_ratio", Type::number, "", non_negative, "thermalised: velocity noise"),
       rule("fluid.seed", Type::integer, "", Range::closed(0, 4611686018427387904.0), "thermalised: random seed"),
       rule("fluid.gravity", Type::vec2, "m/s²", {}, "gravity on the particles"),
+  };
+}
+
+/// The mosquito larva, the walls, particles and emitter, and the studies.
+std::vector<Parameter> larva_and_probe_rules() {
+  const Range positive = Range::positive(), non_negative = Range::non_negative();
+  return {
       rule("larva.centre", Type::vec2, "m", {}, "centre of the larva at rest"),
       rule("larva.length", Type::number, "m", positive, "larva length"),
       rule("larva.height", Type::number, "m", positive, "larva height"),
@@ -93,6 +108,12 @@ ParameterTable make_rules() {
            "integrator-cost: the error controls compared (embedded only for methods with a pair)",
            {"embedded", "step-doubling"}),
   };
+}
+
+ParameterTable make_rules() {
+  std::vector<Parameter> p;
+  for (auto section : {time_output_and_bar_rules, fluid_rules, larva_and_probe_rules})
+    for (Parameter& q : section()) p.push_back(std::move(q));
   return ParameterTable("particle", "", std::move(p));
 }
 
@@ -103,7 +124,7 @@ const ParameterTable& particle_scene_rules() {
   return table;
 }
 
-sim::TimeSettings read_time_settings(const io::Config& c) {
+sim::TimeSettings read_time_settings(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   sim::TimeSettings t;
   t.integrator = r.choice("time.integrator");
@@ -114,12 +135,12 @@ sim::TimeSettings read_time_settings(const io::Config& c) {
   t.duration = r.number("duration");
   t.frame_interval = r.number("time.frame_interval");
   if (t.dt > t.duration)
-    throw InputError("field 'time.dt' = " + io::format_number(t.dt) + " is out of range (0, duration = " +
-                     io::format_number(t.duration) + "]");
+    throw InputError("field 'time.dt' = " + config::format_number(t.dt) + " is out of range (0, duration = " +
+                     config::format_number(t.duration) + "]");
   return t;
 }
 
-sph::RunSettings read_particle_run_settings(const io::Config& c) {
+sph::RunSettings read_particle_run_settings(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   sph::RunSettings s;
   s.time = read_time_settings(c);
@@ -130,7 +151,7 @@ sph::RunSettings read_particle_run_settings(const io::Config& c) {
   return s;
 }
 
-elastic::BarSpec read_bar(const io::Config& c) {
+elastic::BarSpec read_bar(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   elastic::BarSpec b;
   b.length = r.number("bar.length");
@@ -143,14 +164,14 @@ elastic::BarSpec read_bar(const io::Config& c) {
   return b;
 }
 
-void read_collision(const io::Config& c, sph::Scene& scene) {
+void read_collision(const config::Config& c, sph::Scene& scene) {
   const Reader r(c, particle_scene_rules());
   scene.collision.separation_m = r.number("collision.separation");
   scene.collision.trap_radius_m = r.number("collision.trap_radius");
   scene.threads = static_cast<int>(r.integer("run.threads"));
 }
 
-sph::SphParameters read_fluid_parameters(const io::Config& c) {
+sph::SphParameters read_fluid_parameters(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   sph::SphParameters p;
   p.smoothing_radius_m = r.number("fluid.smoothing_radius");
@@ -160,7 +181,7 @@ sph::SphParameters read_fluid_parameters(const io::Config& c) {
   return p;
 }
 
-sph::LarvaSpec read_larva(const io::Config& c) {
+sph::LarvaSpec read_larva(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   sph::LarvaSpec s;
   s.centre = r.vec2("larva.centre");
@@ -185,7 +206,7 @@ bool near_larva(const sph::LarvaSpec& l, Vec2 x, double margin) {
 
 }  // namespace
 
-Box read_box(const io::Config& c) {
+Box read_box(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   const Box b{r.vec2("box.min"), r.vec2("box.max")};
   if (!(b.max.x > b.min.x && b.max.y > b.min.y))
@@ -193,7 +214,7 @@ Box read_box(const io::Config& c) {
   return b;
 }
 
-StripOutput read_strip_output(const io::Config& c) {
+StripOutput read_strip_output(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   StripOutput o;
   o.frames = static_cast<int>(r.integer("output.strip_frames"));
@@ -203,9 +224,9 @@ StripOutput read_strip_output(const io::Config& c) {
   return o;
 }
 
-double read_wall_gap(const io::Config& c) { return Reader(c, particle_scene_rules()).number("wall.gap"); }
+double read_wall_gap(const config::Config& c) { return Reader(c, particle_scene_rules()).number("wall.gap"); }
 
-PointParticle read_point_particle(const io::Config& c) {
+PointParticle read_point_particle(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   PointParticle p;
   const Vec2 pivot = r.vec2("bar.pivot");
@@ -216,7 +237,7 @@ PointParticle read_point_particle(const io::Config& c) {
   return p;
 }
 
-sph::Emitter read_emitter(const io::Config& c, const Box& box) {
+sph::Emitter read_emitter(const config::Config& c, const Box& box) {
   const Reader r(c, particle_scene_rules());
   sph::Emitter e;
   e.interval_s = r.number("emitter.interval");
@@ -230,7 +251,7 @@ sph::Emitter read_emitter(const io::Config& c, const Box& box) {
   return e;
 }
 
-CostStudy read_cost_study(const io::Config& c) {
+CostStudy read_cost_study(const config::Config& c) {
   const Reader r(c, particle_scene_rules());
   CostStudy s;
   s.gas_constants = r.numbers("study.gas_constants");
@@ -239,11 +260,11 @@ CostStudy read_cost_study(const io::Config& c) {
   return s;
 }
 
-LarvaScene build_larva_scene(const io::Config& c) {
+LarvaScene build_larva_scene(const config::Config& c) {
   return build_larva_scene(c, Reader(c, particle_scene_rules()).number("fluid.gas_constant"));
 }
 
-LarvaScene build_larva_scene(const io::Config& c, double gas_constant) {
+LarvaScene build_larva_scene(const config::Config& c, double gas_constant) {
   LarvaScene r;
   sph::Scene& s = r.scene;
   const Reader rd(c, particle_scene_rules());

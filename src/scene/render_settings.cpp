@@ -7,13 +7,13 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 
 using namespace param;
 
-ParameterTable make_render_parameters() {
-  const Range frequency = Range::closed(0.0, 1000.0);
-  std::vector<Parameter> p{
+// [render]: picture size, the 3D model's sampling, the camera, the looks and the output files.
+std::vector<Parameter> render_section_parameters() {
+  return {
       integer("render.width", "640", 16, 8192, "pixels (frames and video)"),
       integer("render.height", "480", 16, 8192, "pixels"),
       integer("render.latitude_samples", "65", 5, 100001, "rendering-model samples per umbrella surface (odd)"),
@@ -52,7 +52,13 @@ ParameterTable make_render_parameters() {
       boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
       boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
       boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
+  };
+}
 
+// [render.noise]: the surface noise of §7.1 (eqs. 7.10–7.18, Figure 8.19).
+std::vector<Parameter> noise_section_parameters() {
+  const Range frequency = Range::closed(0.0, 1000.0);
+  return {
       integer("render.noise.seed", "1", 0, 2147483647,
               "the individual (0 = Perlin's reference permutation)"),
       number("render.noise.structural_weight", "0.01875", "", Range::non_negative(),
@@ -72,6 +78,11 @@ ParameterTable make_render_parameters() {
       boolean("render.noise.bend_shell", "true",
               "unstructured noise moves both surfaces together (false: each along its own normal)"),
   };
+}
+
+ParameterTable make_render_parameters() {
+  std::vector<Parameter> p = render_section_parameters();
+  for (Parameter& n : noise_section_parameters()) p.push_back(std::move(n));
   return ParameterTable("render", "", std::move(p));
 }
 
@@ -101,7 +112,7 @@ const ParameterTable& render_parameters() {
   return table;
 }
 
-render::PipelineSettings read_render_settings(const io::Config& c) {
+render::PipelineSettings read_render_settings(const config::Config& c) {
   const Reader r(c, render_parameters());
   render::PipelineSettings s;
   geometry::GeometrySettings& g = s.geometry;

@@ -8,7 +8,7 @@ namespace jellysim::scene {
 namespace {
 
 /// A scene file of another kind than the one expected (or without one, where it is required).
-void check_kind(const io::Config& file, const ConfigSources& s) {
+void check_kind(const config::Config& file, const ConfigSources& s) {
   if (s.expected_kind.empty()) return;
   const std::string example = "(scene = \"" + s.expected_kind + "\")";
   if (!file.has("scene")) {
@@ -21,7 +21,7 @@ void check_kind(const io::Config& file, const ConfigSources& s) {
 }
 
 /// `--set key=value`s: the kind picks the parameter table, so it comes from the file, never --set.
-void apply_sets(io::Config& config, const ConfigSources& s) {
+void apply_sets(config::Config& config, const ConfigSources& s) {
   for (const std::string& assignment : s.sets) {
     const std::string key = assignment.substr(0, assignment.find('='));
     if (key == "scene")
@@ -34,8 +34,8 @@ void apply_sets(io::Config& config, const ConfigSources& s) {
 
 }  // namespace
 
-io::Config resolve_config(io::Config defaults, const ConfigSources& sources, const std::string& subject) {
-  io::Config config = std::move(defaults);
+config::Config resolve_config(config::Config defaults, const ConfigSources& sources, const std::string& subject) {
+  config::Config config = std::move(defaults);
   if (sources.scene_file) {
     check_kind(*sources.scene_file, sources);
     config.merge(*sources.scene_file);
@@ -52,8 +52,8 @@ io::Config resolve_config(io::Config defaults, const ConfigSources& sources, con
   return config;
 }
 
-io::Config builtin_jellyfish_scene() {
-  return io::Config::parse(jellyfish_scene().scene_toml(), "built-in scenes/jellyfish.toml");
+config::Config builtin_jellyfish_scene() {
+  return config::Config::parse(jellyfish_scene().scene_toml(), "built-in scenes/jellyfish.toml");
 }
 
 }  // namespace jellysim::scene

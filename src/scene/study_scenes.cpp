@@ -9,7 +9,7 @@
 namespace jellysim::scene {
 namespace {
 
-using io::Range;
+using config::Range;
 using namespace param;
 
 
@@ -159,7 +159,7 @@ const ParameterTable& solver_cost_scene() {
   return table;
 }
 
-studies::TaylorGreenSettings read_taylor_green(const io::Config& c) {
+studies::TaylorGreenSettings read_taylor_green(const config::Config& c) {
   const Reader r(c, taylor_green_scene());
   studies::TaylorGreenSettings s;
   s.flow = read_flow(r);
@@ -177,7 +177,7 @@ studies::TaylorGreenSettings read_taylor_green(const io::Config& c) {
   return s;
 }
 
-studies::SolverCostSettings read_solver_cost(const io::Config& c) {
+studies::SolverCostSettings read_solver_cost(const config::Config& c) {
   const Reader r(c, solver_cost_scene());
   studies::SolverCostSettings s;
   s.flow = read_flow(r);
@@ -202,7 +202,7 @@ const ParameterTable& oval_membrane_scene() {
   return table;
 }
 
-CavityScene read_cavity_scene(const io::Config& c) {
+CavityScene read_cavity_scene(const config::Config& c) {
   const Reader r(c, driven_cavity_scene());
   CavityScene s;
   s.cavity.solver = r.choice("solver");
@@ -230,7 +230,7 @@ CavityScene read_cavity_scene(const io::Config& c) {
   return s;
 }
 
-MembraneScene read_membrane_scene(const io::Config& c) {
+MembraneScene read_membrane_scene(const config::Config& c) {
   const Reader r(c, oval_membrane_scene());
   MembraneScene m;
   studies::OvalMembraneSettings& s = m.membrane;

@@ -128,6 +128,23 @@ Vec3 orbit_direction(const OrbitCamera& camera) {
   return {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
 }
 
+// The orbit camera framing `bounds` (40° vertical field of view): its view-projection matrix and eye.
+struct CameraView {
+  Mat4 view_projection;
+  Vec3 eye;
+};
+CameraView orbit_view(const geometry::Bounds& bounds, const OrbitCamera& camera, double aspect) {
+  const double extent = std::max(geometry::norm(bounds.max - bounds.min), 1e-3);
+  const double fov = 40.0 * std::numbers::pi / 180.0;  // vertical
+  const Vec3 direction = orbit_direction(camera);
+  const double distance = std::max(framing_distance(bounds, direction, std::tan(fov / 2.0), aspect), 0.5 * extent) /
+                          std::max(camera.zoom, 0.05);
+  const Vec3 eye = bounds.centre() + distance * direction;
+  return {multiply(perspective(fov, aspect, distance * 0.01, distance * 10.0),
+                   look_at(eye, bounds.centre(), {0.0, 1.0, 0.0})),
+          eye};
+}
+
 }  // namespace
 
 MeshView::MeshView() {
@@ -185,19 +202,11 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
   target_.bind(std::max(width, 16), std::max(height, 16));
   glClearColor(0.03f, 0.12f, 0.20f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const geometry::Bounds bounds = common_bounds(meshes);
-  const double extent = std::max(geometry::norm(bounds.max - bounds.min), 1e-3);
-  const double fov = 40.0 * std::numbers::pi / 180.0;  // vertical
-  const double aspect = static_cast<double>(target_.width()) / target_.height();
-  const Vec3 direction = orbit_direction(camera);
-  const double distance = std::max(framing_distance(bounds, direction, std::tan(fov / 2.0), aspect), 0.5 * extent) /
-                          std::max(camera.zoom, 0.05);
-  const Vec3 eye = bounds.centre() + distance * direction;
-  const Mat4 vp = multiply(perspective(fov, aspect, distance * 0.01, distance * 10.0),
-                           look_at(eye, bounds.centre(), {0.0, 1.0, 0.0}));
+  const CameraView view =
+      orbit_view(common_bounds(meshes), camera, static_cast<double>(target_.width()) / target_.height());
   glUseProgram(program_);
-  glUniformMatrix4fv(u_view_projection_, 1, GL_FALSE, vp.data());
-  glUniform3f(u_eye_, static_cast<float>(eye.x), static_cast<float>(eye.y), static_cast<float>(eye.z));
+  glUniformMatrix4fv(u_view_projection_, 1, GL_FALSE, view.view_projection.data());
+  glUniform3f(u_eye_, static_cast<float>(view.eye.x), static_cast<float>(view.eye.y), static_cast<float>(view.eye.z));
   glBindVertexArray(vao_);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "jellysim/coupling/kernels.hpp"
+#include "jellysim/coupling/transfer_kernels.hpp"
 
 namespace jellysim::coupling {
 namespace {

@@ -14,7 +14,7 @@
 #include "jellysim/coupling/immersed_boundary.hpp"
 #include "jellysim/coupling/mobility.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
-#include "jellysim/fluid/mirror.hpp"
+#include "jellysim/fluid/flow_mirror.hpp"
 
 namespace jellysim::coupling {
 namespace {

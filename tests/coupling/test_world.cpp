@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "jellysim/coupling/world.hpp"
-#include "jellysim/elastic/mirror.hpp"
+#include "jellysim/elastic/body_mirror.hpp"
 
 namespace jellysim::coupling {
 namespace {

@@ -1,5 +1,5 @@
-// Mirror partners and the mirror-symmetric part of a spring body (elastic/mirror.hpp).
-#include "jellysim/elastic/mirror.hpp"
+// Mirror partners and the mirror-symmetric part of a spring body (elastic/body_mirror.hpp).
+#include "jellysim/elastic/body_mirror.hpp"
 
 #include <gtest/gtest.h>
 

@@ -33,7 +33,7 @@ std::string read(const fs::path& p) {
 /// A smooth hill with its top at frequency 0.9 Hz, contract_fraction 0.4; "peak_muscle_tension"
 /// is the frequency itself (for the constraint test).
 js::experiments::Evaluator hill(std::atomic<int>* calls = nullptr) {
-  return [calls](const js::io::Config& c) {
+  return [calls](const js::config::Config& c) {
     if (calls) ++*calls;
     const double f = c.number("jellyfish.frequency"), q = c.number("jellyfish.contract_fraction");
     Evaluation e;
@@ -103,7 +103,7 @@ TEST(Optimize, ResumeReplaysTheEarlierEvaluationsAndWritesTheSameFile) {
 
 TEST(Optimize, FailedEvaluationsAreRecordedWithAPenalty) {
   const fs::path dir = scratch("failing");
-  const auto failing = [](const js::io::Config& c) {
+  const auto failing = [](const js::config::Config& c) {
     Evaluation e = hill()(c);
     e.failed = c.number("jellyfish.frequency") > 1.2;  // a "blow-up" at high frequencies
     if (e.failed) e.figures.clear();
@@ -148,7 +148,7 @@ TEST(Optimize, TwoObjectivesWriteTheParetoFront) {
       "\"jellyfish.contract_fraction\" = [0.15, 0.6]\n",
       "plan.toml");
   // speed rises with the frequency, the cost too: a trade-off along f.
-  const auto tradeoff = [](const js::io::Config& c) {
+  const auto tradeoff = [](const js::config::Config& c) {
     const double f = c.number("jellyfish.frequency"), q = c.number("jellyfish.contract_fraction");
     Evaluation e;
     e.figures["speed"] = f * (1.0 - (q - 0.4) * (q - 0.4));

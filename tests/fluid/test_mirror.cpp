@@ -1,5 +1,5 @@
-// The mirror-symmetric part of a flow (fluid/mirror.hpp).
-#include "jellysim/fluid/mirror.hpp"
+// The mirror-symmetric part of a flow (fluid/flow_mirror.hpp).
+#include "jellysim/fluid/flow_mirror.hpp"
 
 #include <gtest/gtest.h>
 

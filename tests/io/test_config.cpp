@@ -8,8 +8,8 @@
 #include <fstream>
 
 using jellysim::InputError;
-using jellysim::io::Config;
-using jellysim::io::Range;
+using jellysim::config::Config;
+using jellysim::config::Range;
 
 namespace {
 

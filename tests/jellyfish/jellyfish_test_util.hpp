@@ -10,11 +10,11 @@
 
 namespace jellysim::experiments::testing {
 
-inline io::Config scene_with(const std::string& overlay) {
-  io::Config c = scene::builtin_jellyfish_scene();
-  c.merge(io::Config::parse(embedded_text("scenes/jellyfish-thesis.toml"), "scenes/jellyfish-thesis.toml"));
+inline config::Config scene_with(const std::string& overlay) {
+  config::Config c = scene::builtin_jellyfish_scene();
+  c.merge(config::Config::parse(embedded_text("scenes/jellyfish-thesis.toml"), "scenes/jellyfish-thesis.toml"));
   c.set("tank.tracers_per_side=0");
-  c.merge(io::Config::parse(overlay, "test scene"));
+  c.merge(config::Config::parse(overlay, "test scene"));
   return c;
 }
 

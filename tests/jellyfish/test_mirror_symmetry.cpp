@@ -1,4 +1,4 @@
-// Keeping the mirror symmetry of a mirror-symmetric scene (tank.symmetry, fluid/mirror.hpp):
+// Keeping the mirror symmetry of a mirror-symmetric scene (tank.symmetry, fluid/flow_mirror.hpp):
 // which scenes qualify, and which live edits end it. That it changes nothing but the round-off
 // asymmetry, and the ten-cycle swim it gives, are tested in test_swim.cpp.
 #include <gtest/gtest.h>

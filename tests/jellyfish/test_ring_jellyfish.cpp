@@ -124,12 +124,12 @@ TEST(RingJellyfish, MustSwimAlongTheAxis) {
 
 /// The built-in scene in axisymmetric water on the preview grid (96 × 192: 16 cells across the bell,
 /// a sixtieth of the built-in grid's cost), with `overlay` laid over it.
-io::Config axisymmetric_scene(const std::string& overlay = "") {
-  io::Config c = scene::builtin_jellyfish_scene();
+config::Config axisymmetric_scene(const std::string& overlay = "") {
+  config::Config c = scene::builtin_jellyfish_scene();
   c.set("tank.tracers_per_side=0");
   c.set("tank.geometry=\"axisymmetric\"");
   c.set("tank.cells=[96, 192]");
-  if (!overlay.empty()) c.merge(io::Config::parse(overlay, "test scene"));
+  if (!overlay.empty()) c.merge(config::Config::parse(overlay, "test scene"));
   return c;
 }
 
@@ -210,7 +210,7 @@ TEST(RingJellyfish, SwimsAlongTheAxisFartherThanThePlanarSlice) {
 // built from a scene: the force along the axis over 6πμaU times Haberman & Sayre's wall factor
 // measured 1.163 at 6 cells per radius, as there (1.1627).
 TEST(RingJellyfish, ASphereObstacleFeelsStokesDragFromTheScene) {
-  io::Config c = axisymmetric_scene(
+  config::Config c = axisymmetric_scene(
       "duration = 0.6\n"
       "[tank]\nwidth = 0.096\nheight = 0.288\ncells = [48, 144]\nviscosity = 1e-3\nsolver = \"eulerian\"\n"
       "boundaries = [\"inflow\", \"inflow\", \"inflow\", \"outflow\"]\n"

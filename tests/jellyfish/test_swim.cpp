@@ -16,7 +16,7 @@ namespace {
 
 /// The built-in scene (64 cells across the bell), tracers off.
 jellyfish::SwimSettings builtin_scene() {
-  io::Config c = scene::builtin_jellyfish_scene();
+  config::Config c = scene::builtin_jellyfish_scene();
   c.set("tank.tracers_per_side=0");
   return read_swim_settings(c);
 }
@@ -25,7 +25,7 @@ jellyfish::SwimSettings builtin_scene() {
 /// bell, tank and solvers, for the tests of the machinery (symmetry, half tank, the marker-space
 /// solve), at a sixtieth of the cost. Its swimming is not the converged one (docs/convergence.md).
 jellyfish::SwimSettings preview_scene() {
-  io::Config c = scene::builtin_jellyfish_scene();
+  config::Config c = scene::builtin_jellyfish_scene();
   c.set("tank.tracers_per_side=0");
   c.set("tank.cells=[96, 192]");
   return read_swim_settings(c);
@@ -67,7 +67,7 @@ double largest_difference(const SwimRecording& a, const SwimRecording& b) {
 // (1e308). Both are a failed run saying when and what, with finite metrics recorded up to the
 // failure and charts that can be drawn (no "no finite data to plot" instead of a summary).
 TEST(Swim, NonFiniteStatesAndMetricsAreDivergences) {
-  io::Config c = scene::builtin_jellyfish_scene();
+  config::Config c = scene::builtin_jellyfish_scene();
   c.set("tank.tracers_per_side=0");
   c.set("tank.cells=[24, 48]");
   c.set("duration=0.1");

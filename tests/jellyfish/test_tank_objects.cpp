@@ -15,7 +15,7 @@
 namespace jellysim::experiments {
 namespace {
 
-io::Config scene(const std::string& overlay) { return testing::scene_with(overlay); }
+config::Config scene(const std::string& overlay) { return testing::scene_with(overlay); }
 
 Vec2 centroid(const std::vector<Vec2>& p) {
   Vec2 c{};
@@ -98,8 +98,8 @@ phase = 0.25
 // over three cycles: largest tilts 8.2 and 4.5 degrees, distances 3.8 and 8.1 cm (the later one
 // swims into the water its neighbour set moving).
 TEST(SlowTank, TwoJellyfishKeepTheirHeadingOverThreeCycles) {
-  io::Config c = scene::builtin_jellyfish_scene();
-  c.merge(io::Config::load(std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml"));
+  config::Config c = scene::builtin_jellyfish_scene();
+  c.merge(config::Config::load(std::string(JELLYSIM_SOURCE_DIR) + "/scenes/two-jellyfish.toml"));
   c.set("tank.tracers_per_side=0");
   c.set("duration=4.285714285714286");  // three cycles at 0.7 Hz
   jellyfish::SwimSimulation sim(read_swim_settings(c));

@@ -154,7 +154,7 @@ TEST(Renderer, BadSizeIsAnInputError) {
   EXPECT_THROW(OffscreenRenderer(4, 4), InputError);
 }
 
-io::Config stages_config() { return experiments::default_config(experiments::find_experiment("stages")); }
+config::Config stages_config() { return experiments::default_config(experiments::find_experiment("stages")); }
 
 TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
   const PipelineSettings s = scene::read_render_settings(stages_config());
@@ -163,7 +163,7 @@ TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
   EXPECT_DOUBLE_EQ(s.geometry.noise.structural_weight, 0.01875);
   for (const char* bad : {"render.width=3", "render.latitude_samples=64", "render.noise.max_contraction=1.5",
                           "render.noise.unstructured_weight=-1", "render.interpolant=bezier"}) {
-    io::Config c = stages_config();
+    config::Config c = stages_config();
     c.set(bad);
     const std::string field = std::string(bad).substr(0, std::string(bad).find('='));
     try {

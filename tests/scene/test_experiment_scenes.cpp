@@ -26,13 +26,13 @@ using scene::Parameter;
 using scene::ParameterTable;
 using scene::Type;
 
-io::Config experiment_config(const std::string& name) {
+config::Config experiment_config(const std::string& name) {
   return experiments::default_config(experiments::find_experiment(name));
 }
 
 /// `name`'s default configuration with `assignment` applied.
-io::Config with(const std::string& name, const std::string& assignment) {
-  io::Config c = experiment_config(name);
+config::Config with(const std::string& name, const std::string& assignment) {
+  config::Config c = experiment_config(name);
   c.set(assignment);
   return c;
 }
@@ -73,7 +73,7 @@ int check_bounds(const ParameterTable& rules, const std::string& name) {
   for (const Parameter& p : rules.parameters()) {
     if ((p.type != Type::number && p.type != Type::integer) || !experiment_config(name).has(p.key)) continue;
     for (const std::string& v : values_outside(p)) {
-      const io::Config c = with(name, p.key + "=" + v);
+      const config::Config c = with(name, p.key + "=" + v);
       const scene::Reader r(c, rules);
       const std::string message = error_of([&] { p.type == Type::number ? (void)r.number(p.key) : (void)r.integer(p.key); });
       // Integers' bounds are named as integers ("[0, 4611686018427387904]", not "4.6e+18").
@@ -141,7 +141,7 @@ TEST(ExperimentScenes, JellyfishStudiesFollowTheirRules) {
   int checked = 0;
   for (const char* name : {"structural-instability", "numerical-instability", "frequency-sweep", "sweep", "fluidless",
                            "coupling-stability", "steering", "resonance"}) {
-    const io::Config c = experiment_config(name);
+    const config::Config c = experiment_config(name);
     EXPECT_NO_THROW(scene::Reader(c, rules).validate_all()) << name;
     for (const Parameter& p : rules.parameters())
       if (c.has(p.key)) used.insert(p.key);
@@ -194,7 +194,7 @@ TEST(ExperimentScenes, ParticleScenesOwnFieldsAreEnforced) {
   EXPECT_EQ(scene::read_point_particle(experiment_config("bar-hits-particle")).position.x, -0.48);
   expect_rejected(error_of([] { scene::read_point_particle(with("bar-hits-particle", "particle.mass=0.0")); }),
                   "particle.mass", "(0, inf)");
-  const auto emitter = [](const io::Config& c) { scene::read_emitter(c, scene::read_box(c)); };
+  const auto emitter = [](const config::Config& c) { scene::read_emitter(c, scene::read_box(c)); };
   expect_rejected(error_of([&] { emitter(with("sph-stream", "emitter.interval=0.0")); }), "emitter.interval", "(0, inf)");
   expect_rejected(error_of([&] { emitter(with("sph-stream", "emitter.max_count=100001")); }), "emitter.max_count",
                   "[0, 100000]");
@@ -220,9 +220,9 @@ TEST(ExperimentScenes, ParticleScenesOwnFieldsAreEnforced) {
 // elastic::BarSpec's defaults (and swinging-bar's extra [bar] fields are BarSpec's too).
 TEST(ExperimentScenes, BarScenesExtendOneBarWhoseDefaultsAreBarSpecs) {
   const elastic::BarSpec spec{};
-  const io::Config base = io::Config::parse(experiments::definition_text("scenes/bar.toml"), "scenes/bar.toml");
+  const config::Config base = config::Config::parse(experiments::definition_text("scenes/bar.toml"), "scenes/bar.toml");
   const elastic::BarSpec read = scene::read_bar(base);
-  const io::Config swinging = experiment_config("swinging-bar");
+  const config::Config swinging = experiment_config("swinging-bar");
   const scene::Reader r(swinging, scene::particle_scene_rules());
   const std::pair<double, double> read_and_default[] = {
       {read.length, spec.length},         {read.width, spec.width},
@@ -237,6 +237,6 @@ TEST(ExperimentScenes, BarScenesExtendOneBarWhoseDefaultsAreBarSpecs) {
     EXPECT_EQ(experiments::find_experiment(name).base_path, "scenes/bar.toml") << name;
     const std::string own(experiments::definition_text(experiments::find_experiment(name).definition_path));
     for (const char* field : {"length", "width", "segments", "point_mass", "stiffness", "pivot", "gravity"})
-      EXPECT_FALSE(io::Config::parse(own, name).has(std::string("bar.") + field)) << name << " repeats bar." << field;
+      EXPECT_FALSE(config::Config::parse(own, name).has(std::string("bar.") + field)) << name << " repeats bar." << field;
   }
 }

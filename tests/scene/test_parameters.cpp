@@ -71,7 +71,7 @@ TEST(SceneParameters, DefinitionFilesAreTheirTables) {
 
 TEST(SceneParameters, EveryDefaultIsAllowedAndReadable) {
   for (const ParameterTable* t : tables()) {
-    const io::Config defaults = t->defaults();
+    const config::Config defaults = t->defaults();
     EXPECT_NO_THROW(scene::Reader(defaults, *t).validate_all()) << t->name();
     for (const Parameter& p : t->parameters()) {
       EXPECT_TRUE(defaults.has(p.key)) << p.key;
@@ -97,7 +97,7 @@ TEST(SceneParameters, EveryBoundIsEnforcedWithTheFieldAndRangeNamed) {
       if (std::isfinite(p.range.min)) outside.push_back(p.range.min_open ? p.range.min : p.range.min - step(p.range.min));
       if (std::isfinite(p.range.max)) outside.push_back(p.range.max_open ? p.range.max : p.range.max + step(p.range.max));
       for (double v : outside) {
-        io::Config c = t->defaults();
+        config::Config c = t->defaults();
         std::ostringstream value;
         value.precision(17);
         if (p.type == Type::integer) value << static_cast<long long>(v);
@@ -119,7 +119,7 @@ TEST(SceneParameters, ArraysNeedTheirLengthAndChoicesTheirValues) {
   for (const char* bad : {"tank.cells=[96]", "tank.cells=[96, 128, 4]", "tank.cells=[3, 128]",
                           "tank.boundaries=[\"free-slip\"]", "tank.boundaries=[\"wall\", \"free-slip\", "
                           "\"free-slip\", \"free-slip\"]", "tank.solver=\"lbm\""}) {
-    io::Config c = t.defaults();
+    config::Config c = t.defaults();
     c.set(bad);
     const std::string key = std::string(bad).substr(0, std::string(bad).find('='));
     const std::string message = error_of([&] { scene::read_swim_settings(c); });
@@ -229,7 +229,7 @@ TEST(SceneParameters, LiveParametersAreTableEntriesWithSliders) {
   // The viewer and a scene file allow the same frequencies.
   EXPECT_EQ(scene::check_live_value(scene::live_parameter("frequency"), 5.0), "");
   EXPECT_EQ(scene::check_live_value(scene::live_parameter("frequency"), 5.5), "frequency must be in (0, 5], got 5.5");
-  io::Config c = scene::jellyfish_scene().defaults();
+  config::Config c = scene::jellyfish_scene().defaults();
   c.set("jellyfish.frequency=5.5");
   EXPECT_NE(error_of([&] { scene::read_swim_settings(c); }).find("(0, 5]"), std::string::npos);
   EXPECT_THROW(scene::live_parameter("colour"), InputError);
@@ -242,12 +242,12 @@ TEST(SceneParameters, ParticleScenesFollowOneSetOfRules) {
   std::set<std::string> used;
   for (const char* name : {"swinging-bar", "bar-hits-wall", "bar-hits-particle", "sph-stream", "mosquito-larva",
                            "integrator-cost"}) {
-    const io::Config c = experiments::default_config(experiments::find_experiment(name));
+    const config::Config c = experiments::default_config(experiments::find_experiment(name));
     EXPECT_NO_THROW(scene::Reader(c, rules).validate_all()) << name;
     for (const Parameter& p : rules.parameters())
       if (c.has(p.key)) used.insert(p.key);
     if (c.has("bar.segments")) {
-      io::Config bad = c;
+      config::Config bad = c;
       bad.set("bar.segments=10001");
       const std::string message = error_of([&] { scene::read_bar(bad); });
       EXPECT_NE(message.find("'bar.segments' = 10001 is out of range [1, 10000]"), std::string::npos) << name << ": " << message;
@@ -269,9 +269,9 @@ TEST(SceneParameters, ObjectTablesDefaultsAreTheReadersDefaults) {
       {"circle", "type = \"circle\"\ncentre = [0.5, 0.5]\nradius = 0.1\n"},
       {"box", "type = \"box\"\ncentre = [0.5, 0.5]\nsize = [0.1, 0.2]\n"}};
   for (const auto& [type, minimal] : obstacles) {
-    const jellyfish::ObstacleSpec a = scene::read_obstacle(io::Config::parse(minimal, type), type, type);
+    const jellyfish::ObstacleSpec a = scene::read_obstacle(config::Config::parse(minimal, type), type, type);
     const jellyfish::ObstacleSpec b =
-        scene::read_obstacle(io::Config::parse(with_every_default(type, minimal), type), type, type);
+        scene::read_obstacle(config::Config::parse(with_every_default(type, minimal), type), type, type);
     EXPECT_EQ(a.tether_stiffness_n_per_m2, b.tether_stiffness_n_per_m2) << type;
     EXPECT_EQ(a.angle_rad, b.angle_rad) << type;
     EXPECT_EQ(a.motion.velocity_m_per_s.x, b.motion.velocity_m_per_s.x) << type;
@@ -281,9 +281,9 @@ TEST(SceneParameters, ObjectTablesDefaultsAreTheReadersDefaults) {
   const std::string ib2d = "type = \"ib2d\"\nmodel = \"hoover-miller\"\nresolution = 64\n";
   const std::string schedule = "[[schedules]]\nsprings = \"muscles\"\n";
   const coupling::TankSpec tank{};
-  const jellyfish::Ib2dObjectSpec a = scene::read_ib2d_object(io::Config::parse(ib2d + schedule, "a"), "a", tank);
+  const jellyfish::Ib2dObjectSpec a = scene::read_ib2d_object(config::Config::parse(ib2d + schedule, "a"), "a", tank);
   const jellyfish::Ib2dObjectSpec b = scene::read_ib2d_object(
-      io::Config::parse(with_every_default("ib2d", ib2d) + with_every_default("schedules", schedule), "b"), "b", tank);
+      config::Config::parse(with_every_default("ib2d", ib2d) + with_every_default("schedules", schedule), "b"), "b", tank);
   ASSERT_EQ(a.schedules.size(), 1u);
   ASSERT_EQ(b.schedules.size(), 1u);
   EXPECT_EQ(a.offset_m.x, b.offset_m.x);
@@ -307,12 +307,12 @@ void expect_object_rejected(const std::string& message, const std::string& key, 
 TEST(SceneParameters, ObjectFieldsFollowTheirTables) {
   const std::string circle = "type = \"circle\"\ncentre = [0.5, 0.5]\n";
   expect_object_rejected(error_of([&] {
-                    scene::read_obstacle(io::Config::parse(circle + "radius = 0.1\nsize = [1.0, 1.0]\n", "c"), "circle",
+                    scene::read_obstacle(config::Config::parse(circle + "radius = 0.1\nsize = [1.0, 1.0]\n", "c"), "circle",
                                          "objects[0] (circle)");
                   }),
                   "size", "allowed: type, centre, radius, tether_stiffness");
   expect_object_rejected(error_of([&] {
-                    scene::read_obstacle(io::Config::parse(circle + "radius = -0.1\n", "c"), "circle", "c");
+                    scene::read_obstacle(config::Config::parse(circle + "radius = -0.1\n", "c"), "circle", "c");
                   }),
                   "radius", "(0, inf)");
   for (const std::string& type : scene::object_types())

@@ -14,7 +14,7 @@ namespace {
 using namespace jellysim;
 using jellysim::testing::error_of;
 
-io::Config resolve(const scene::ConfigSources& sources) {
+config::Config resolve(const scene::ConfigSources& sources) {
   return scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
 }
 
@@ -25,11 +25,11 @@ TEST(Resolve, TheBuiltInSceneIsTheSimulateExperimentsDefaults) {
 }
 
 TEST(Resolve, SceneFileThenSetsThenDurationThenShorthands) {
-  scene::ConfigSources s{io::Config::parse("[jellyfish]\nfrequency = 0.6\n", "a.toml"), "a.toml", "jellyfish"};
+  scene::ConfigSources s{config::Config::parse("[jellyfish]\nfrequency = 0.6\n", "a.toml"), "a.toml", "jellyfish"};
   s.sets = {"jellyfish.frequency=0.7", "tank.viscosity=2e-5"};
   s.duration = 0.25;
   s.shorthands = {{"cycles", "tank.viscosity", "3e-5"}};
-  const io::Config c = resolve(s);
+  const config::Config c = resolve(s);
   EXPECT_DOUBLE_EQ(c.number("jellyfish.frequency"), 0.7);
   EXPECT_DOUBLE_EQ(c.number("duration"), 0.25);
   EXPECT_DOUBLE_EQ(c.number("tank.viscosity"), 3e-5);
@@ -44,17 +44,17 @@ TEST(Resolve, RulesAndTheirMessages) {
   twice.sets = {"duration=1"};
   twice.duration = 2.0;
   EXPECT_NE(error_of([&] { resolve(twice); }).find("give it once"), std::string::npos);
-  const io::Config bar = io::Config::parse("scene = \"swinging-bar\"\n", "bar.toml");
+  const config::Config bar = config::Config::parse("scene = \"swinging-bar\"\n", "bar.toml");
   EXPECT_EQ(error_of([&] { resolve({bar, "bar.toml", "jellyfish"}); }),
             "bar.toml: expected a jellyfish scene (scene = \"jellyfish\"), not 'swinging-bar'");
-  const io::Config kindless = io::Config::parse("duration = 1.0\n", "plain.toml");
+  const config::Config kindless = config::Config::parse("duration = 1.0\n", "plain.toml");
   EXPECT_DOUBLE_EQ(resolve({kindless, "plain.toml", "jellyfish"}).number("duration"), 1.0);
   EXPECT_EQ(error_of([&] { resolve({kindless, "plain.toml", "jellyfish", true}); }),
             "plain.toml: missing field 'scene' (scene = \"jellyfish\")");
   scene::ConfigSources shorthand{};
   shorthand.shorthands = {{"re", "re", "100"}};
   EXPECT_EQ(error_of([&] { resolve(shorthand); }), "--re: the jellyfish scene has no re");
-  const io::Config durationless = io::Config::parse("x = 1\n", "built-in");
+  const config::Config durationless = config::Config::parse("x = 1\n", "built-in");
   scene::ConfigSources duration{};
   duration.duration = 1.0;
   EXPECT_EQ(error_of([&] { scene::resolve_config(durationless, duration, "experiment 'x'"); }),
@@ -69,7 +69,7 @@ namespace {
 // the experiments that take them: exactly those whose configuration has the option's key.
 TEST(Resolve, EachExperimentDeclaresTheShorthandOptionsItsConfigurationHas) {
   for (const experiments::Experiment& e : experiments::all_experiments()) {
-    const io::Config defaults = experiments::default_config(e);
+    const config::Config defaults = experiments::default_config(e);
     for (const experiments::ShorthandOption& o : experiments::shorthand_options()) {
       const bool declared = std::find(e.shorthands.begin(), e.shorthands.end(), o.name) != e.shorthands.end();
       EXPECT_EQ(declared, defaults.has(o.key)) << e.name << " --" << o.name;

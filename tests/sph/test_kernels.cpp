@@ -1,7 +1,7 @@
 // The 2D kernels of thesis §5.1.1: normalisation by quadrature, zero value and slope at r = h,
 // derivatives against finite differences, and a vanishing gradient sum over a full neighbourhood.
 #include "jellysim/sph/initial_conditions.hpp"
-#include "jellysim/sph/kernels.hpp"
+#include "jellysim/sph/smoothing_kernels.hpp"
 
 #include <gtest/gtest.h>
 

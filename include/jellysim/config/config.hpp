@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-namespace jellysim::io {
+namespace jellysim::config {
 
 /// A number as error messages write it (10 significant digits).
 std::string format_number(double v);
@@ -100,4 +100,4 @@ class Config {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace jellysim::io
+}  // namespace jellysim::config

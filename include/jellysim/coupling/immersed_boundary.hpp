@@ -21,7 +21,7 @@
 
 #include "jellysim/core/parallel.hpp"
 #include "jellysim/ode/gmres.hpp"
-#include "jellysim/coupling/kernels.hpp"
+#include "jellysim/coupling/transfer_kernels.hpp"
 #include "jellysim/coupling/mobility.hpp"
 #include "jellysim/elastic/body.hpp"
 #include "jellysim/fluid/fluid_solver.hpp"
@@ -122,7 +122,7 @@ class ImmersedBoundary {
   /// Call after adding points to the body or changing their kinds.
   void refresh_markers();
   /// The body and flow are their own mirror images about a vertical line, partners[p] being the
-  /// mirror image of point p (elastic/mirror.hpp): the solve then looks for a symmetric increment
+  /// mirror image of point p (elastic/body_mirror.hpp): the solve then looks for a symmetric increment
   /// and the preconditioner works on the symmetric unknowns only (half of them). Empty: no symmetry.
   void set_mirror_symmetry(std::vector<int> partners);
   /// Checkpoints (core/state_archive.hpp): the clock, the step count, the last increment (GMRES's
@@ -166,7 +166,7 @@ class ImmersedBoundary {
   void project_spread_forces(std::span<Vec2> forces);
   /// w = S F / ρ on the interior faces (eq. 4.19), zero elsewhere; target points spread nothing.
   void spread_to_interior_faces(std::span<Vec2> forces, fluid::Velocity& w);
-  /// Axisymmetric flow (fluid::Geometry): every marker is a ring about the axis (kernels.hpp).
+  /// Axisymmetric flow (fluid::Geometry): every marker is a ring about the axis (transfer_kernels.hpp).
   bool axisymmetric() const { return fluid_.settings().geometry == fluid::Geometry::axisymmetric; }
   /// Spreads marker forces as accelerations onto the faces (planar or ring form).
   void spread(std::span<const Vec2> points, std::span<const Vec2> forces, fluid::FaceAccelerations& acc) const;

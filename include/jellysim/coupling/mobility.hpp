@@ -12,7 +12,7 @@
 // its response to a unit force on one face of each component (two projections, once per grid)
 // gives every entry of R as sums of table values: for markers a and b,
 //   R_ab = Σ_{f' ∈ J_a} Σ_{f ∈ S_b} Σ_images w_a(f') w_b(f) s T(f' − image(f)) / (ρ Δx Δy),
-// where the stencils are exactly those of kernels.hpp (ghost samples read by the boundary rules of
+// where the stencils are exactly those of transfer_kernels.hpp (ghost samples read by the boundary rules of
 // fluid/boundary.cpp). With the FFT pressure solver R equals the operator the GMRES iterations
 // apply, to round-off.
 //
@@ -24,7 +24,7 @@
 
 #include <Eigen/Dense>
 
-#include "jellysim/coupling/kernels.hpp"
+#include "jellysim/coupling/transfer_kernels.hpp"
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/grid.hpp"
 
@@ -116,7 +116,7 @@ class MobilityMatrix {
 };
 
 /// The mobility of rings in axisymmetric water (fluid::Geometry::axisymmetric; the axis is the
-/// grid's west side): R = J P S / ρ with ring spreading (kernels.hpp: the stencil folded across
+/// grid's west side): R = J P S / ρ with ring spreading (transfer_kernels.hpp: the stencil folded across
 /// the axis, a force F on face f an acceleration F w / (ρ 2π r_f Δr Δz)). Without translation
 /// invariance in r, the table holds per source face column i and component the box's response
 /// to a unit value on face (i, 0); along z the box is a torus with the sides' mirror images, as in

@@ -3,7 +3,7 @@
 // the immersed-boundary coupling between them (§4.3.2) and passive tracers. It is the one copy of
 // a simulation's state: scene objects (jellyfish, obstacles) refer to their markers in body() by
 // index and actuate them there. When the scene is its own mirror image it keeps the symmetry
-// exactly and may solve only the east half of the tank (fluid/mirror.hpp); flow() always shows the
+// exactly and may solve only the east half of the tank (fluid/flow_mirror.hpp); flow() always shows the
 // whole tank. Knows nothing of jellyfish, files or pixels.
 #include <memory>
 #include <string>
@@ -16,7 +16,7 @@
 
 namespace jellysim::coupling {
 
-/// Whether a simulation keeps the mirror symmetry of a mirror-symmetric scene (fluid/mirror.hpp).
+/// Whether a simulation keeps the mirror symmetry of a mirror-symmetric scene (fluid/flow_mirror.hpp).
 enum class MirrorSymmetry {
   none,       ///< never: round-off grows into the 2D wake instability (the solver's own symmetry)
   automatic,  ///< when the scene is its own mirror image about the tank's centre line, else none
@@ -58,7 +58,7 @@ double peskin_spacing(const TankSpec& tank);
 class World {
  public:
   /// A tank at rest (or with its current) around `body`. `actuate` sets the body's time-dependent
-  /// springs before each force evaluation. `mirror_partners` (elastic/mirror.hpp: per point its
+  /// springs before each force evaluation. `mirror_partners` (elastic/body_mirror.hpp: per point its
   /// mirror image about x = width/2) non-empty keeps the mirror symmetry, solving the east half
   /// when tank.half_tank and cells_x is even; the caller checks that the scene is symmetric.
   World(const TankSpec& tank, std::unique_ptr<elastic::Body> body, const CouplingSettings& coupling,

@@ -66,7 +66,7 @@ class Batch {
 
   std::size_t size() const { return plan_.run_count(); }
   /// Run k's resolved configuration (made when asked: a batch keeps only the plan).
-  io::Config config(std::size_t k) const;
+  config::Config config(std::size_t k) const;
   const BatchPlan& plan() const { return plan_; }
   const std::filesystem::path& out() const { return out_; }
   /// DIR/runs/NNNN (four digits at least).
@@ -99,7 +99,7 @@ class Batch {
 
   BatchPlan plan_;
   std::filesystem::path out_;
-  io::Config base_;  ///< every run's configuration before its own overrides
+  config::Config base_;  ///< every run's configuration before its own overrides
   std::vector<std::optional<BatchRow>> resumed_;
   std::shared_ptr<io::DirectoryLock> lock_;  ///< DIR's, from prepare_directory() on
 };

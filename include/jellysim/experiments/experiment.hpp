@@ -18,7 +18,7 @@ namespace jellysim::experiments {
 struct Checkpointing;  // jellyfish_runs.hpp
 
 struct Context {
-  io::Config config;
+  config::Config config;
   sim::ProgressCallback progress;
   /// `jellysim simulate --checkpoint-every` / `--resume` (null: no checkpoints).
   std::shared_ptr<const Checkpointing> checkpoints{};
@@ -75,7 +75,7 @@ const std::vector<Experiment>& all_experiments();
 /// Finds an experiment by name; throws InputError listing the known names.
 const Experiment& find_experiment(const std::string& name);
 /// The experiment's default configuration, parsed from its embedded definition file.
-io::Config default_config(const Experiment& experiment);
+config::Config default_config(const Experiment& experiment);
 /// Text of an embedded file; throws std::logic_error when absent (a build error).
 std::string_view embedded_text(std::string_view path);
 /// The text of a scene or experiment definition: the embedded file, or for a definition that is a
@@ -94,7 +94,7 @@ Outcome run_guarded(const Experiment& e, const Context& ctx, const std::function
                     const io::OutputDir& out);
 
 /// Writes summary.json: status, version, command, key figures and the resolved configuration.
-void write_summary(const io::OutputDir& out, const std::string& command, const io::Config& config,
+void write_summary(const io::OutputDir& out, const std::string& command, const config::Config& config,
                    const nlohmann::ordered_json& figures, const std::string& failure);
 
 }  // namespace jellysim::experiments

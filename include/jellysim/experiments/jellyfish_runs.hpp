@@ -10,6 +10,7 @@
 #include "jellysim/io/checkpoint.hpp"
 #include "jellysim/io/output.hpp"
 #include "jellysim/jellyfish/metrics.hpp"
+#include "jellysim/jellyfish/swim_record.hpp"
 #include "jellysim/jellyfish/swim_simulation.hpp"
 #include "jellysim/render/field_picture.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
@@ -26,19 +27,11 @@ struct SwimOutputOptions {
   bool vtk = false;
   bool record_tracers = false;  ///< keep every frame's tracer positions (the animation's marine snow)
 };
-SwimOutputOptions read_output_options(const io::Config& c);
+SwimOutputOptions read_output_options(const config::Config& c);
 
-struct SwimRecording {
-  std::vector<double> frame_times;                  ///< s, one per recorded frame
-  std::vector<jellyfish::SliceFrame> frames;        ///< the first jellyfish (metrics.csv)
+/// A run's record (jellyfish/swim_record.hpp: frames, forces, metrics) and its step statistics.
+struct SwimRecording : jellyfish::SwimRecord {
   jellyfish::SwimRunStats stats;
-  std::vector<jellyfish::MetricsRow> metrics;
-  std::vector<std::vector<jellyfish::SliceFrame>> others;        ///< jellyfish 2, 3, …
-  std::vector<std::vector<jellyfish::MetricsRow>> other_metrics; ///< their metrics
-  std::vector<std::vector<Vec2>> obstacle_forces;   ///< per frame, per obstacle: fluid force, N/m
-  std::vector<std::vector<std::vector<Vec2>>> obstacle_outlines;  ///< per frame, per obstacle: its markers, m
-  std::vector<std::vector<Vec2>> structure_centroids;  ///< per frame, per IB2d structure: centroid without targets, m
-  std::vector<std::vector<Vec2>> tracers;           ///< per frame, when SwimOutputOptions::record_tracers
 };
 
 /// Checkpoints of a swim (issue 23): io/checkpoint.hpp's file, written at the first frame at or
@@ -83,5 +76,8 @@ nlohmann::ordered_json swim_figures(const jellyfish::SwimSettings& settings, con
 
 /// The 2D picture of one state (springs, muscles, tracers over speed or vorticity).
 render::FieldPicture swim_picture(const jellyfish::SwimSimulation& sim, double zoom_diameters);
+/// Panels side by side on one vorticity scale (±10/s, no arrows) into `name` (nothing without panels).
+void write_vorticity_panels(const io::OutputDir& out, const std::string& name,
+                            const std::vector<render::FieldPicture>& panels);
 
 }  // namespace jellysim::experiments

@@ -75,17 +75,17 @@ struct Evaluation {
 };
 
 /// Evaluates a resolved configuration. The command's is evaluate_swim; tests pass a cheap one.
-using Evaluator = std::function<Evaluation(const io::Config&)>;
+using Evaluator = std::function<Evaluation(const config::Config&)>;
 /// Told after each evaluation of a single-objective search: evaluations done, the budget.
 using EvaluationProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Runs the swim of a resolved jellyfish configuration (as `simulate` would, without files) and
 /// measures it; a run that fails (blow-up) is a failed evaluation.
-Evaluation evaluate_swim(const io::Config& config, const std::optional<Vec2>& target, double target_time_s);
+Evaluation evaluate_swim(const config::Config& config, const std::optional<Vec2>& target, double target_time_s);
 
 /// The configuration of one evaluation: the built-in scene, the plan's scene, [set], the variables'
 /// values and the duration (cycles / frequency). Throws InputError as resolve_config does.
-io::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>& x);
+config::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>& x);
 
 /// Checks the plan against the scene (every variable a number the scene reads, both bounds
 /// accepted, the duration), then runs it into `out`: evaluations.csv (resumed from when present),

@@ -42,6 +42,11 @@ class Projector {
   void archive(core::StateArchive& a);
 
  private:
+  // rhs_ = ∇·u*/Δt (eq. 3.3) and phi_ = the initial guess of φ (see project()).
+  void prepare_rhs_and_guess(const FlowState& state, double dt_s, double density_kg_per_m3);
+  // Keeps φ_n and φ_{n−1} for the next guess (buffers rotate, no copy).
+  void remember_phi(double dt_s);
+
   std::unique_ptr<PressureSolver> solver_;
   Geometry geometry_;
   std::vector<double> rhs_, phi_;

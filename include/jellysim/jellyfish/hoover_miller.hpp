@@ -1,4 +1,5 @@
 #pragma once
+#include <vector>
 // The Hoover–Miller jellyfish bell as IB2d ships it (IB2d's Make_Jelly_Geometry.m, "courtesy of
 // Alexander P. Hoover", converted from IBAMR; Hoover & Miller 2015; the convergence study of
 // Battista & Mizuhara 2019): generated here from its description, not copied. An elliptical bell
@@ -47,5 +48,14 @@ struct HooverMillerBell {
 
 /// Throws std::invalid_argument for a resolution outside [16, 4096] or one not divisible by 8.
 HooverMillerBell hoover_miller_bell(const HooverMillerSpec& spec = {});
+
+/// The bell's swim per cycle (1 s at IB2d's 1 Hz): the centroid's displacement y(k) − y(k − 1) over
+/// each full cycle k = 1 … cycles, from frames (t_s, y_m) within tolerance_s of the whole seconds; a
+/// cycle without both frames is left out.
+std::vector<double> cycle_displacements(const std::vector<double>& t_s, const std::vector<double>& y_m, int cycles,
+                                        double tolerance_s);
+
+/// The mean displacement of cycles 2 and 3 (the first starts from rest); 0 without them.
+double later_cycle_displacement(const std::vector<double>& per_cycle);
 
 }  // namespace jellysim::jellyfish

@@ -28,7 +28,7 @@ struct IntegratorOrderScene {
   int refinements = 4;                                        ///< step halvings after the coarsest run
   std::vector<std::pair<std::string, int>> coarsest_steps;    ///< (integrator, steps), registry order
 };
-IntegratorOrderScene read_integrator_order(const io::Config& c);
+IntegratorOrderScene read_integrator_order(const config::Config& c);
 
 // ---- stages (Figure 8.19) ---------------------------------------------------------------------
 
@@ -42,7 +42,7 @@ struct StagesScene {
   render::PipelineSettings pipeline;  ///< the [render] section
 };
 /// [bell], [output] and [render]; throws InputError naming the field.
-StagesScene read_stages_scene(const io::Config& c);
+StagesScene read_stages_scene(const config::Config& c);
 
 // ---- the jellyfish studies' own fields (rules; defaults are each study's) ----------------------
 
@@ -55,7 +55,7 @@ struct InstabilityFigure {
   double zoom_diameters = 6.0;  ///< output.picture_zoom of the jellyfish scene
   std::string expected;         ///< "structural" or "numerical"
 };
-InstabilityFigure read_instability_figure(const io::Config& c);
+InstabilityFigure read_instability_figure(const config::Config& c);
 
 /// frequency-sweep and sweep.
 struct SweepScene {
@@ -63,7 +63,7 @@ struct SweepScene {
   int placements = 1;  ///< runs per frequency
   int threads = 0;     ///< 0: one per core
 };
-SweepScene read_sweep(const io::Config& c);
+SweepScene read_sweep(const config::Config& c);
 
 /// fluidless: the model's settings, its point mass and its time stepping (duration and frame
 /// interval are the jellyfish scene's, set by the caller).
@@ -73,14 +73,14 @@ struct FluidlessScene {
   sim::TimeSettings time;
   bool compare_with_fluid = true;
 };
-FluidlessScene read_fluidless(const io::Config& c);
+FluidlessScene read_fluidless(const config::Config& c);
 
 /// steering: where the targets lie and when the headings are averaged.
 struct SteeringScene {
   Vec2 target_offset;  ///< from the start; x > 0 (the left target is at (−x, y))
   double settle_cycles = 4.0;
 };
-SteeringScene read_steering(const io::Config& c);
+SteeringScene read_steering(const config::Config& c);
 
 /// resonance (docs/control.md): the release test and the frequency sweep around its result.
 struct ResonanceScene {
@@ -90,10 +90,10 @@ struct ResonanceScene {
   double cycles = 4.0;        ///< cycles per sweep run
   int threads = 0;
 };
-ResonanceScene read_resonance(const io::Config& c);
+ResonanceScene read_resonance(const config::Config& c);
 
 /// coupling-stability: the Δt caps tried.
-std::vector<double> read_coupling_stability_steps(const io::Config& c);
+std::vector<double> read_coupling_stability_steps(const config::Config& c);
 
 // ---- experiments extending the jellyfish scene with top-level fields of their own -------------
 
@@ -105,10 +105,10 @@ struct HooverMillerFields {
   int cycles = 3;
   std::string muscles = "ib2d";  ///< "ib2d" or "per-length"
 };
-HooverMillerFields read_hoover_miller_fields(const io::Config& c);
+HooverMillerFields read_hoover_miller_fields(const config::Config& c);
 
 /// axisymmetric-vs-planar: cycles (rules; the default in its definition).
 const ParameterTable& axisymmetric_vs_planar_rules();
-int read_axisymmetric_vs_planar_cycles(const io::Config& c);
+int read_axisymmetric_vs_planar_cycles(const config::Config& c);
 
 }  // namespace jellysim::scene

@@ -14,10 +14,10 @@ const ParameterTable& jellyfish_scene();
 /// Reads duration, output.frame_interval, [tank], [jellyfish], [[objects]], [coupling] and
 /// [stability]; throws InputError naming the field and what is allowed (a polygon file: its path
 /// and line).
-jellyfish::SwimSettings read_swim_settings(const io::Config& c);
+jellyfish::SwimSettings read_swim_settings(const config::Config& c);
 /// output.picture_zoom: 0 (the whole tank) or [kMinPictureZoom, 1000] bell diameters (a narrower
 /// view has no width left to draw; throws InputError naming the field).
-double read_picture_zoom(const io::Config& c);
+double read_picture_zoom(const config::Config& c);
 inline constexpr double kMinPictureZoom = 0.01;
 
 }  // namespace jellysim::scene

@@ -24,9 +24,9 @@ const ParameterTable& object_parameters(const std::string& type);
 
 /// A rigid obstacle (`type` circle, box or polygon) from its [[objects]] table `o`; `where` names it
 /// in messages ("objects[2] (circle)"). Throws InputError.
-jellyfish::ObstacleSpec read_obstacle(const io::Config& o, const std::string& type, const std::string& where);
+jellyfish::ObstacleSpec read_obstacle(const config::Config& o, const std::string& type, const std::string& where);
 /// An IB2d structure (`type` ib2d) in the tank `tank`. Throws InputError.
-jellyfish::Ib2dObjectSpec read_ib2d_object(const io::Config& o, const std::string& where,
+jellyfish::Ib2dObjectSpec read_ib2d_object(const config::Config& o, const std::string& where,
                                            const coupling::TankSpec& tank);
 
 /// The reference page's [[objects]] section: a table per object type.

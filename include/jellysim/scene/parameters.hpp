@@ -39,7 +39,7 @@ struct Parameter {
   std::string value;        ///< the default as a TOML value, e.g. "0.7", "[96, 128]", "\"fft\""; empty in a
                             ///< table of rules whose defaults are each scene's own
   std::string unit;         ///< SI unit ("m", "Hz", "m²/s"); empty: dimensionless or not a number
-  io::Range range{};        ///< numbers, integers, vec2 and integers' elements
+  config::Range range{};        ///< numbers, integers, vec2 and integers' elements
   std::vector<std::string> choices{};  ///< choice and choices
   int length = 0;           ///< integers and choices: the required count (0: any)
   std::string description;  ///< one line
@@ -48,13 +48,13 @@ struct Parameter {
 
 /// Shorthands for table entries.
 namespace param {
-Parameter number(std::string key, std::string value, std::string unit, io::Range range, std::string description,
+Parameter number(std::string key, std::string value, std::string unit, config::Range range, std::string description,
                  Slider slider = {});
 Parameter integer(std::string key, std::string value, double min, double max, std::string description);
 Parameter boolean(std::string key, std::string value, std::string description);
 /// `value` without quotes.
 Parameter choice(std::string key, std::string value, std::vector<std::string> choices, std::string description);
-Parameter vec2(std::string key, std::string value, std::string unit, io::Range range, std::string description);
+Parameter vec2(std::string key, std::string value, std::string unit, config::Range range, std::string description);
 }  // namespace param
 
 /// A scene kind's parameters, in the order the scene file lists them; tables ([tank], …) follow
@@ -75,12 +75,12 @@ class ParameterTable {
   /// The built-in scene as TOML: the preamble, then every parameter with its default and a comment
   /// giving its description, unit and allowed values. With `values`, each parameter's value is
   /// taken from there instead (a resolved configuration).
-  std::string scene_toml(const io::Config* values = nullptr) const;
+  std::string scene_toml(const config::Config* values = nullptr) const;
   /// The reference page (docs/parameters.md's section for this table): a Markdown table per TOML
   /// table with key, default, unit, allowed values and description.
   std::string reference_markdown() const;
   /// The built-in scene, parsed ("built-in <name> scene" in messages); only for tables with defaults.
-  io::Config defaults() const;
+  config::Config defaults() const;
 
  private:
   std::string name_;
@@ -97,7 +97,7 @@ std::string allowed_values(const Parameter& p);
 /// field, its value and what is allowed.
 class Reader {
  public:
-  Reader(const io::Config& config, const ParameterTable& table) : config_(config), table_(table) {}
+  Reader(const config::Config& config, const ParameterTable& table) : config_(config), table_(table) {}
 
   double number(std::string_view key) const;
   std::int64_t integer(std::string_view key) const;
@@ -112,12 +112,12 @@ class Reader {
   /// Checks every parameter of the table present in the configuration by its type and range.
   void validate_all() const;
 
-  const io::Config& config() const { return config_; }
+  const config::Config& config() const { return config_; }
   const ParameterTable& table() const { return table_; }
 
  private:
   const Parameter& expect(std::string_view key, Type type) const;
-  const io::Config& config_;
+  const config::Config& config_;
   const ParameterTable& table_;
 };
 

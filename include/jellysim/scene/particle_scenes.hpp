@@ -22,23 +22,23 @@ namespace jellysim::scene {
 const ParameterTable& particle_scene_rules();
 
 /// duration and [time] integrator, dt, adaptive, atol, rtol, frame_interval; dt <= duration.
-sim::TimeSettings read_time_settings(const io::Config& c);
+sim::TimeSettings read_time_settings(const config::Config& c);
 /// read_time_settings plus [time] error_control, thin_boundary_limit and [output] max_speed.
-sph::RunSettings read_particle_run_settings(const io::Config& c);
+sph::RunSettings read_particle_run_settings(const config::Config& c);
 /// [bar] length, width, segments, point_mass, stiffness, pivot, gravity (the Figure 8.1 bar).
-elastic::BarSpec read_bar(const io::Config& c);
+elastic::BarSpec read_bar(const config::Config& c);
 /// [collision] separation, trap_radius; run.threads (0: one per core).
-void read_collision(const io::Config& c, sph::Scene& scene);
+void read_collision(const config::Config& c, sph::Scene& scene);
 /// [fluid] smoothing_radius, rest_density, gas_constant, viscosity.
-sph::SphParameters read_fluid_parameters(const io::Config& c);
+sph::SphParameters read_fluid_parameters(const config::Config& c);
 /// [larva] (without gravity, which build_larva_scene applies).
-sph::LarvaSpec read_larva(const io::Config& c);
+sph::LarvaSpec read_larva(const config::Config& c);
 
 /// [box] min and max; max above and right of min.
 struct Box {
   Vec2 min, max;
 };
-Box read_box(const io::Config& c);
+Box read_box(const config::Config& c);
 
 /// The frame strip of [output]: strip_frames, and strip_window, strip_start and velocity_scale
 /// where the scene has them (0 otherwise).
@@ -48,27 +48,27 @@ struct StripOutput {
   double start_s = 0.0;           ///< mosquito larva: first frame shown
   double velocity_scale_s = 0.0;  ///< mosquito larva: drawn velocity vectors' length per m/s
 };
-StripOutput read_strip_output(const io::Config& c);
+StripOutput read_strip_output(const config::Config& c);
 
 /// bar-hits-wall: wall.gap.
-double read_wall_gap(const io::Config& c);
+double read_wall_gap(const config::Config& c);
 
 /// bar-hits-particle: the point mass of [particle], its position made absolute (from bar.pivot).
 struct PointParticle {
   Vec2 position, velocity, gravity;
   double mass_kg = 1.0;
 };
-PointParticle read_point_particle(const io::Config& c);
+PointParticle read_point_particle(const config::Config& c);
 
 /// sph-stream: [emitter], placed from the box's top-left corner; it must lie inside the box.
-sph::Emitter read_emitter(const io::Config& c, const Box& box);
+sph::Emitter read_emitter(const config::Config& c, const Box& box);
 
 /// integrator-cost: [study] gas_constants, integrators, error_controls.
 struct CostStudy {
   std::vector<double> gas_constants;
   std::vector<std::string> integrators, error_controls;
 };
-CostStudy read_cost_study(const io::Config& c);
+CostStudy read_cost_study(const config::Config& c);
 
 /// The mosquito-larva scene ([box], [fluid], [larva], [collision], run.threads) with the fluid's
 /// gas constant `gas_constant` (the first form: fluid.gas_constant); also reports the
@@ -77,7 +77,7 @@ struct LarvaScene {
   sph::Scene scene;
   sph::MassSearch mass;
 };
-LarvaScene build_larva_scene(const io::Config& c);
-LarvaScene build_larva_scene(const io::Config& c, double gas_constant);
+LarvaScene build_larva_scene(const config::Config& c);
+LarvaScene build_larva_scene(const config::Config& c, double gas_constant);
 
 }  // namespace jellysim::scene

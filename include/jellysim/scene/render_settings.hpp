@@ -11,6 +11,6 @@ namespace jellysim::scene {
 const ParameterTable& render_parameters();
 
 /// The rendering pipeline's settings from the [render] section; throws InputError naming the field.
-render::PipelineSettings read_render_settings(const io::Config& c);
+render::PipelineSettings read_render_settings(const config::Config& c);
 
 }  // namespace jellysim::scene

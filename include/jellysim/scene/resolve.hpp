@@ -18,7 +18,7 @@ struct Shorthand {
 
 /// What is laid over the defaults, in this order.
 struct ConfigSources {
-  std::optional<io::Config> scene_file;  ///< a scene file (or scene text), when one is given
+  std::optional<config::Config> scene_file;  ///< a scene file (or scene text), when one is given
   std::string scene_name;                ///< its path (or "scene text"), for messages
   /// When not empty: the kind the scene file must be (its `scene` field); a file without the field
   /// is accepted unless `kind_required`.
@@ -32,10 +32,10 @@ struct ConfigSources {
 /// The defaults, then the scene file, the `--set` overrides, `--duration` and the shorthands.
 /// `subject` names what is resolved in messages, e.g. "experiment 'driven-cavity'". Throws
 /// InputError naming the option or field at fault; the result is not yet validated by a reader.
-io::Config resolve_config(io::Config defaults, const ConfigSources& sources, const std::string& subject);
+config::Config resolve_config(config::Config defaults, const ConfigSources& sources, const std::string& subject);
 
 /// The built-in jellyfish scene (scenes/jellyfish.toml, the text generated from jellyfish_scene()),
 /// what `simulate`, `view`, `batch` and `jellysim.Simulation` start from.
-io::Config builtin_jellyfish_scene();
+config::Config builtin_jellyfish_scene();
 
 }  // namespace jellysim::scene

@@ -25,15 +25,15 @@ struct CavityScene {
   bool figure_enabled = true;
   studies::CavityFigureSettings figure;
 };
-CavityScene read_cavity_scene(const io::Config& c);
+CavityScene read_cavity_scene(const config::Config& c);
 
 struct MembraneScene {
   studies::OvalMembraneSettings membrane;
   std::vector<std::int64_t> refinement_cells;  ///< the same test on these grids
 };
-MembraneScene read_membrane_scene(const io::Config& c);
-studies::TaylorGreenSettings read_taylor_green(const io::Config& c);
-studies::SolverCostSettings read_solver_cost(const io::Config& c);
+MembraneScene read_membrane_scene(const config::Config& c);
+studies::TaylorGreenSettings read_taylor_green(const config::Config& c);
+studies::SolverCostSettings read_solver_cost(const config::Config& c);
 
 /// The table whose generated text is the built-in definition `path` (e.g. "scenes/jellyfish.toml"),
 /// or nullptr when that definition is a plain file.

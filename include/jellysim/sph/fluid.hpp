@@ -4,7 +4,7 @@
 // (with the minus sign the thesis drops), viscosity by eq. 5.8 with the velocity difference
 // v_j − v_i. Walls mirror particles within h (§5.1.3). 2D densities are per unit area (kg/m²).
 #include "jellysim/math/vec2.hpp"
-#include "jellysim/sph/kernels.hpp"
+#include "jellysim/sph/smoothing_kernels.hpp"
 #include "jellysim/sph/neighbour_grid.hpp"
 #include "jellysim/core/parallel.hpp"
 #include "jellysim/sph/walls.hpp"

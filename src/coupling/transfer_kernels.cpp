@@ -1,4 +1,4 @@
-#include "jellysim/coupling/kernels.hpp"
+#include "jellysim/coupling/transfer_kernels.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -28,7 +28,7 @@ struct HooverMillerRun {
   std::string muscles = "ib2d";  ///< "ib2d" (IB2d's fixed muscle stiffness) or "per-length" (the consistent variant)
 };
 
-HooverMillerRun read_hoover_miller(io::Config c) {
+HooverMillerRun read_hoover_miller(config::Config c) {
   HooverMillerRun run;
   const scene::HooverMillerFields fields = scene::read_hoover_miller_fields(c);
   run.re = fields.re;
@@ -41,7 +41,7 @@ HooverMillerRun read_hoover_miller(io::Config c) {
   run.bell = jellyfish::hoover_miller_bell(spec);
   c.set("duration=" + std::to_string(run.cycles));
   c.set("tank.cells=[" + std::to_string(spec.cells_x()) + ", " + std::to_string(spec.cells_y()) + "]");
-  c.set("tank.viscosity=" + io::format_number(1.0 / run.re));  // μ = 1000/Re Pa·s, ρ = 1000 kg/m³
+  c.set("tank.viscosity=" + config::format_number(1.0 / run.re));  // μ = 1000/Re Pa·s, ρ = 1000 kg/m³
   run.settings = scene::read_swim_settings(c);
   if (run.settings.structures.size() != 1 || !run.settings.school.empty() || !run.settings.obstacles.empty())
     throw InputError("experiment hoover-miller needs exactly one object, of type \"ib2d\" (the bell), and no jellyfish");
@@ -55,6 +55,58 @@ render::FieldPicture bell_picture(const jellyfish::SwimSimulation& sim, const Ho
   render::FieldPicture p = swim_picture(sim, 0.0);
   p.view_m = std::array<Vec2, 2>{Vec2{0.0, centre.y - 1.5}, Vec2{run.settings.tank.width_m, centre.y + 2.5}};
   return p;
+}
+
+/// strokes.png: the vorticity at the end of each contraction, one panel per stroke on one scale.
+void write_strokes_picture(const io::OutputDir& out, std::vector<render::FieldPicture>& strokes,
+                           const std::vector<fluid::FlowState>& stroke_flows) {
+  for (std::size_t k = 0; k < strokes.size(); ++k) strokes[k].state = &stroke_flows[k];
+  write_vorticity_panels(out, "strokes.png", strokes);
+}
+
+/// The centroid's height from its start and the margin gap over time (trajectory.png).
+render::ChartSpec trajectory_chart(const std::vector<double>& t, const std::vector<double>& centroid_y,
+                                   const std::vector<double>& gap) {
+  render::ChartSpec chart;
+  chart.title = "Hoover-Miller bell: centroid height and margin gap";
+  chart.x_label = "t";
+  chart.x_unit = "s";
+  chart.y_label = "m";
+  render::Series sy, sg;
+  sy.label = "centroid y - start";
+  sy.x = t;
+  for (double y : centroid_y) sy.y.push_back(y - (centroid_y.empty() ? 0.0 : centroid_y.front()));
+  sg.label = "margin gap";
+  sg.x = t;
+  sg.y = gap;
+  chart.series = {sy, sg};
+  return chart;
+}
+
+/// summary.json's figures: the run, the swim per cycle (jellyfish::cycle_displacements), the margin gap and the cost.
+nlohmann::ordered_json hoover_miller_figures(const HooverMillerRun& run, const std::vector<double>& per_cycle,
+                                             const std::vector<double>& gap, const jellyfish::SwimRunStats& stats) {
+  nlohmann::ordered_json fig;
+  fig["units"] = {{"length", "m"}, {"time", "s"}};
+  fig["re"] = run.re;
+  fig["grid"] = run.grid;
+  fig["muscles"] = run.muscles;
+  fig["cells"] = {run.settings.tank.cells_x, run.settings.tank.cells_y};
+  fig["markers"] = run.bell.structure.vertices.size();
+  fig["cycle_displacements_m"] = per_cycle;
+  fig["displacement_per_cycle_m"] = jellyfish::later_cycle_displacement(per_cycle);
+  fig["margin_gap_min_m"] = gap.empty() ? 0.0 : *std::min_element(gap.begin(), gap.end());
+  fig["margin_gap_max_m"] = gap.empty() ? 0.0 : *std::max_element(gap.begin(), gap.end());
+  fig["wall_seconds_per_simulated_second"] =
+      stats.simulated_seconds > 0 ? stats.wall_seconds / stats.simulated_seconds : 0.0;
+  fig["dt_s"] = stats.steps > 0 ? stats.simulated_seconds / static_cast<double>(stats.steps) : 0.0;
+  fig["dt_min_s"] = stats.smallest_step_s;
+  fig["dt_max_s"] = stats.largest_step_s;
+  fig["steps"] = stats.steps;
+  fig["krylov_iterations"] = stats.krylov_iterations;
+  fig["simulated_seconds"] = stats.simulated_seconds;
+  fig["wall_seconds"] = stats.wall_seconds;
+  return fig;
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context& ctx) {
@@ -95,64 +147,13 @@ std::function<Outcome(const io::OutputDir&)> prepare_hoover_miller(const Context
         ctx.progress);
     out.write_text("trajectory.csv", csv.text());
 
-    for (std::size_t k = 0; k < strokes.size(); ++k) strokes[k].state = &stroke_flows[k];
-    render::FieldPictureOptions po;
-    po.quantity = render::FieldQuantity::vorticity;
-    po.arrows = false;
-    po.colour_range_max = 10.0;  // 1/s: the same scale in every panel
-    if (!strokes.empty())
-      out.write_text("strokes.png", render::field_panels_png(strokes, static_cast<int>(strokes.size()), po));
+    write_strokes_picture(out, strokes, stroke_flows);
 
-    // Displacement of the centroid along y over each full cycle (1 s at 1 Hz).
-    std::vector<double> per_cycle;
-    for (int k = 1; k <= run.cycles; ++k) {
-      const auto at = [&](double time) {
-        for (std::size_t i = 0; i < t.size(); ++i)
-          if (std::abs(t[i] - time) <= half_frame) return std::optional<double>(centroid_y[i]);
-        return std::optional<double>();
-      };
-      const auto a = at(k - 1.0), b = at(static_cast<double>(k));
-      if (a && b) per_cycle.push_back(*b - *a);
-    }
-    double mean_later = 0.0;
-    int later = 0;
-    for (std::size_t k = 1; k < per_cycle.size() && k < 3; ++k, ++later) mean_later += per_cycle[k];
+    const std::vector<double> per_cycle = jellyfish::cycle_displacements(t, centroid_y, run.cycles, half_frame);
 
-    render::ChartSpec chart;
-    chart.title = "Hoover-Miller bell: centroid height and margin gap";
-    chart.x_label = "t";
-    chart.x_unit = "s";
-    chart.y_label = "m";
-    render::Series sy, sg;
-    sy.label = "centroid y - start";
-    sy.x = t;
-    for (double y : centroid_y) sy.y.push_back(y - (centroid_y.empty() ? 0.0 : centroid_y.front()));
-    sg.label = "margin gap";
-    sg.x = t;
-    sg.y = gap;
-    chart.series = {sy, sg};
-    if (!t.empty()) out.write_text("trajectory.png", render::chart_png(chart));
+    if (!t.empty()) out.write_text("trajectory.png", render::chart_png(trajectory_chart(t, centroid_y, gap)));
 
-    nlohmann::ordered_json fig;
-    fig["units"] = {{"length", "m"}, {"time", "s"}};
-    fig["re"] = run.re;
-    fig["grid"] = run.grid;
-    fig["muscles"] = run.muscles;
-    fig["cells"] = {run.settings.tank.cells_x, run.settings.tank.cells_y};
-    fig["markers"] = run.bell.structure.vertices.size();
-    fig["cycle_displacements_m"] = per_cycle;
-    fig["displacement_per_cycle_m"] = later > 0 ? mean_later / later : 0.0;
-    fig["margin_gap_min_m"] = gap.empty() ? 0.0 : *std::min_element(gap.begin(), gap.end());
-    fig["margin_gap_max_m"] = gap.empty() ? 0.0 : *std::max_element(gap.begin(), gap.end());
-    fig["wall_seconds_per_simulated_second"] =
-        stats.simulated_seconds > 0 ? stats.wall_seconds / stats.simulated_seconds : 0.0;
-    fig["dt_s"] = stats.steps > 0 ? stats.simulated_seconds / static_cast<double>(stats.steps) : 0.0;
-    fig["dt_min_s"] = stats.smallest_step_s;
-    fig["dt_max_s"] = stats.largest_step_s;
-    fig["steps"] = stats.steps;
-    fig["krylov_iterations"] = stats.krylov_iterations;
-    fig["simulated_seconds"] = stats.simulated_seconds;
-    fig["wall_seconds"] = stats.wall_seconds;
+    const nlohmann::ordered_json fig = hoover_miller_figures(run, per_cycle, gap, stats);
     write_summary(out, "experiment hoover-miller", ctx.config, fig, stats.failure);
     return Outcome{stats.failure};
   };

@@ -1,4 +1,4 @@
-#include "jellysim/fluid/mirror.hpp"
+#include "jellysim/fluid/flow_mirror.hpp"
 
 #include <cmath>
 #include <stdexcept>

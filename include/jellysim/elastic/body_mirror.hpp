@@ -1,5 +1,5 @@
 #pragma once
-// Mirror symmetry of a spring body about a vertical line x = c (see fluid/mirror.hpp for why).
+// Mirror symmetry of a spring body about a vertical line x = c (see fluid/flow_mirror.hpp for why).
 #include <vector>
 
 #include "jellysim/elastic/body.hpp"

@@ -1,4 +1,4 @@
-#include "jellysim/elastic/mirror.hpp"
+#include "jellysim/elastic/body_mirror.hpp"
 
 #include <algorithm>
 #include <cmath>
