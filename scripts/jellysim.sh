@@ -4,7 +4,8 @@
 #   scripts/jellysim.sh test                         runs the whole test suite: Release (gcc), then
 #                                                    ASan+UBSan (clang, a short libFuzzer run included),
 #                                                    then the threaded library tests under ThreadSanitizer
-#                                                    (clang); every build with warnings as errors
+#                                                    (clang; only their modules are built, ~3.5 min cold on
+#                                                    the shared 2 cores); every build with warnings as errors
 #   scripts/jellysim.sh build                        only installs and builds
 #   scripts/jellysim.sh tsan                         every threaded test under ThreadSanitizer, the command
 #                                                    line's (threaded batch, determinism) included: it builds
@@ -51,9 +52,10 @@ build_release() { build build/release -DCMAKE_BUILD_TYPE=Release -DJELLYSIM_WERR
 # The ThreadSanitizer pass (clang, -fsanitize=thread, warnings as errors) builds only the named test
 # programs, each with its own module's libraries (tests/CMakeLists.txt), and runs only the threaded
 # tests. In `test`: the worker pool, the serial writer thread and the path chooser (core), the
-# mobility table built on threads (coupling), the SPH evaluation on threads (sph). `tsan` adds the
-# command line's threaded batch and one-versus-two-threads determinism runs, which need the program
-# and so every module built under ThreadSanitizer.
+# mobility table built on threads (coupling), the SPH evaluation and backward Euler on threads (sph).
+# `tsan` adds the command line's threaded batch and one-versus-two-threads determinism runs, which
+# need the program and so every module built under ThreadSanitizer (the batch's threaded runner is in
+# `experiments`, nearly the whole program: too slow for `test`).
 TSAN_LIBRARY_PROGRAMS=(test_core test_coupling test_sph)
 TSAN_LIBRARY_TESTS='^(WorkerPool|SerialWorker|PathChooser)\.|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^SphBackwardEuler\.RunsAdaptively'
 TSAN_CLI_TESTS='^BatchCli\.ThreadedBatch|^Determinism\..*Threads'
