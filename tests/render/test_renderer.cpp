@@ -1,12 +1,11 @@
-// Offscreen rendering (EGL surfaceless, Mesa llvmpipe), PNG round trip, the stored reference image,
-// and the whole animation-output pipeline. Skipped (with the reason) where no EGL device exists.
+// Offscreen rendering (EGL surfaceless, Mesa llvmpipe), PNG round trip, the stored reference image
+// (the whole animation-output pipeline: tests/experiments/test_render_pipeline.cpp). Skipped (with the reason) where no EGL device exists.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
-#include "jellysim/experiments/experiment.hpp"
 #include "jellysim/geometry/extrapolation.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/geometry/synthetic_bell.hpp"
@@ -14,25 +13,13 @@
 #include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/render/gl_renderer.hpp"
 #include "jellysim/render/video.hpp"
-#include "jellysim/scene/render_settings.hpp"
+#include "render_test_util.hpp"
 
 namespace jellysim::render {
 namespace {
 
 namespace fs = std::filesystem;
-
-#define REQUIRE_OFFSCREEN_GL()                                                               \
-  do {                                                                                       \
-    std::string why;                                                                         \
-    if (!offscreen_gl_available(&why)) GTEST_SKIP() << "no offscreen OpenGL device: " << why; \
-  } while (0)
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("jellysim_test_render_" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using testing::scratch;
 
 /// The known scene of the reference image: the expanded synthetic bell without noise.
 RgbImage render_known_mesh() {
@@ -152,63 +139,6 @@ TEST(Renderer, PngRoundTripIsExact) {
 
 TEST(Renderer, BadSizeIsAnInputError) {
   EXPECT_THROW(OffscreenRenderer(4, 4), InputError);
-}
-
-config::Config stages_config() { return experiments::default_config(experiments::find_experiment("stages")); }
-
-TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
-  const PipelineSettings s = scene::read_render_settings(stages_config());
-  EXPECT_EQ(s.width_px, 640);
-  EXPECT_EQ(s.geometry.latitude_samples, 65);
-  EXPECT_DOUBLE_EQ(s.geometry.noise.structural_weight, 0.01875);
-  for (const char* bad : {"render.width=3", "render.latitude_samples=64", "render.noise.max_contraction=1.5",
-                          "render.noise.unstructured_weight=-1", "render.interpolant=bezier"}) {
-    config::Config c = stages_config();
-    c.set(bad);
-    const std::string field = std::string(bad).substr(0, std::string(bad).find('='));
-    try {
-      scene::read_render_settings(c);
-      ADD_FAILURE() << bad << " accepted";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-    }
-  }
-}
-
-TEST(Pipeline, WritesEveryPromisedFile) {
-  REQUIRE_OFFSCREEN_GL();
-  PipelineSettings s = scene::read_render_settings(stages_config());
-  s.width_px = 96;
-  s.height_px = 72;
-  s.geometry.latitude_samples = 21;
-  s.geometry.disc_points = 24;
-  s.video = !find_ffmpeg().empty();
-  std::vector<jellyfish::SliceFrame> frames;
-  for (int k = 0; k < 4; ++k) {
-    geometry::SyntheticBell spec;
-    spec.contraction = 0.25 * k;
-    spec.time_s = k / 30.0;
-    frames.push_back(geometry::synthetic_bell(spec));
-  }
-  const fs::path dir = scratch("pipeline");
-  std::size_t calls = 0;
-  const AnimationOutputs out =
-      write_animation_outputs(frames, s, io::OutputDir(dir), [&](std::size_t, std::size_t) { ++calls; });
-  EXPECT_EQ(calls, 4u);
-  EXPECT_EQ(out.frames, 4u);
-  for (const char* f : {"frames/frame_0000.png", "frames/frame_0003.png", "meshes/frame_0000.obj",
-                        "meshes/frame_0003.ply", "jellyfish.glb", "viewer.html", "caches/jellyfish_1.obj",
-                        "caches/jellyfish_1.pc2"})
-    EXPECT_TRUE(fs::is_regular_file(dir / f)) << f;
-  // The page loads jellyfish.glb beside it; the base64 copy only with render.page_embed.
-  EXPECT_FALSE(fs::exists(dir / "jellyfish.glb.js"));
-  if (s.video) {
-    EXPECT_GT(fs::file_size(dir / "jellyfish.mp4"), 1000u);
-  }
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
-  EXPECT_EQ(out.figures()["frames"], 4);
-  fs::remove_all(dir.parent_path());
 }
 
 }  // namespace

@@ -13,7 +13,6 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/scene/experiment_scenes.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
-#include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/live_parameters.hpp"
 #include "jellysim/scene/objects.hpp"
 #include "jellysim/scene/particle_scenes.hpp"
@@ -233,27 +232,6 @@ TEST(SceneParameters, LiveParametersAreTableEntriesWithSliders) {
   c.set("jellyfish.frequency=5.5");
   EXPECT_NE(error_of([&] { scene::read_swim_settings(c); }).find("(0, 5]"), std::string::npos);
   EXPECT_THROW(scene::live_parameter("colour"), InputError);
-}
-
-// The elastic-bar and particle-fluid scenes share one set of rules; every field each of them
-// defines follows it, every rule is used by some scene, and a bound is the same in all of them.
-TEST(SceneParameters, ParticleScenesFollowOneSetOfRules) {
-  const ParameterTable& rules = scene::particle_scene_rules();
-  std::set<std::string> used;
-  for (const char* name : {"swinging-bar", "bar-hits-wall", "bar-hits-particle", "sph-stream", "mosquito-larva",
-                           "integrator-cost"}) {
-    const config::Config c = experiments::default_config(experiments::find_experiment(name));
-    EXPECT_NO_THROW(scene::Reader(c, rules).validate_all()) << name;
-    for (const Parameter& p : rules.parameters())
-      if (c.has(p.key)) used.insert(p.key);
-    if (c.has("bar.segments")) {
-      config::Config bad = c;
-      bad.set("bar.segments=10001");
-      const std::string message = error_of([&] { scene::read_bar(bad); });
-      EXPECT_NE(message.find("'bar.segments' = 10001 is out of range [1, 10000]"), std::string::npos) << name << ": " << message;
-    }
-  }
-  for (const Parameter& p : rules.parameters()) EXPECT_TRUE(used.count(p.key)) << p.key << " is a rule no scene uses";
 }
 
 // The [[objects]] tables' documented defaults are what the readers leave when a field is absent

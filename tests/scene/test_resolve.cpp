@@ -1,11 +1,9 @@
 // scene::resolve_config, the one resolution of a configuration (issue 36): the order of its
-// sources, its rules and their messages, and the built-in jellyfish scene it starts from.
+// sources, its rules and their messages (the built-in scene and the experiments' shorthand options:
+// tests/experiments/test_scene_experiments.cpp).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "scene_test_util.hpp"
-#include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 #include "jellysim/scene/resolve.hpp"
 
@@ -16,12 +14,6 @@ using jellysim::testing::error_of;
 
 config::Config resolve(const scene::ConfigSources& sources) {
   return scene::resolve_config(scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
-}
-
-TEST(Resolve, TheBuiltInSceneIsTheSimulateExperimentsDefaults) {
-  EXPECT_EQ(scene::builtin_jellyfish_scene().to_json(),
-            experiments::default_config(experiments::find_experiment("jellyfish")).to_json());
-  EXPECT_EQ(scene::builtin_jellyfish_scene().to_json(), scene::jellyfish_scene().defaults().to_json());
 }
 
 TEST(Resolve, SceneFileThenSetsThenDurationThenShorthands) {
@@ -59,28 +51,6 @@ TEST(Resolve, RulesAndTheirMessages) {
   duration.duration = 1.0;
   EXPECT_EQ(error_of([&] { scene::resolve_config(durationless, duration, "experiment 'x'"); }),
             "--duration: experiment 'x' has no duration");
-}
-
-}  // namespace
-
-namespace {
-
-// Issue 36: the shorthand options of `jellysim experiment` (--re, --threads, ...) are declared by
-// the experiments that take them: exactly those whose configuration has the option's key.
-TEST(Resolve, EachExperimentDeclaresTheShorthandOptionsItsConfigurationHas) {
-  for (const experiments::Experiment& e : experiments::all_experiments()) {
-    const config::Config defaults = experiments::default_config(e);
-    for (const experiments::ShorthandOption& o : experiments::shorthand_options()) {
-      const bool declared = std::find(e.shorthands.begin(), e.shorthands.end(), o.name) != e.shorthands.end();
-      EXPECT_EQ(declared, defaults.has(o.key)) << e.name << " --" << o.name;
-    }
-  }
-  const experiments::Experiment& bar = experiments::find_experiment("swinging-bar");
-  EXPECT_EQ(error_of([&] { experiments::shorthands_for(bar, {{"re", "100"}}); }),
-            "--re: experiment 'swinging-bar' has no re");
-  const auto grids = experiments::shorthands_for(experiments::find_experiment("convergence"), {{"grids", "24x32"}});
-  ASSERT_EQ(grids.size(), 1u);
-  EXPECT_EQ(grids[0].key + "=" + grids[0].value, "grids=\"24x32\"");
 }
 
 }  // namespace

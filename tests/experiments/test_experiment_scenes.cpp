@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "scene_test_util.hpp"
+#include "../scene/scene_test_util.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/scene/experiment_scenes.hpp"
