@@ -25,6 +25,9 @@ install(FILES ${CMAKE_BINARY_DIR}/jellysimConfig.cmake ${CMAKE_BINARY_DIR}/jelly
 
 install(TARGETS jellysim RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/jellysim/scenes COMPONENT runtime)
+# viewer.html's script (render::default_viewer_script finds it here when the source tree is gone).
+install(FILES ${PROJECT_SOURCE_DIR}/web/dist/jellyfish-viewer.js DESTINATION ${CMAKE_INSTALL_DATADIR}/jellysim/web
+        COMPONENT runtime)
 # Debian's interpreter reads /usr/lib/python3/dist-packages (and /usr/local/lib/python3.11/dist-packages):
 # under the prefix /usr (the .deb) `import jellysim` needs no PYTHONPATH; another prefix needs
 # PYTHONPATH=<prefix>/lib/python3/dist-packages.

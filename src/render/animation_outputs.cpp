@@ -340,7 +340,15 @@ void write_viewer(const PipelineSettings& s, const std::string& glb, const io::O
 }  // namespace
 
 std::filesystem::path default_viewer_script() {
-  return std::filesystem::path(JELLYSIM_WEB_DIR) / "dist" / "jellyfish-viewer.js";
+  const std::filesystem::path in_source = std::filesystem::path(JELLYSIM_WEB_DIR) / "dist" / "jellyfish-viewer.js";
+  if (std::filesystem::is_regular_file(in_source)) return in_source;
+  // An installed program (cmake --install, the .deb): PREFIX/bin/jellysim (or the interpreter running
+  // the Python module, PREFIX/bin/python3) beside PREFIX/share/jellysim/web (cmake/install.cmake).
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return in_source;
+  const std::filesystem::path installed = exe.parent_path().parent_path() / "share/jellysim/web/jellyfish-viewer.js";
+  return std::filesystem::is_regular_file(installed) ? installed : in_source;
 }
 
 nlohmann::ordered_json AnimationOutputs::figures() const {

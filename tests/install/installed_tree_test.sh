@@ -12,7 +12,7 @@ prefix=$work/prefix
 "$cmake" --install "$build" --prefix "$prefix" > "$work/install.log"
 for f in bin/jellysim lib/cmake/jellysim/jellysimConfig.cmake lib/cmake/jellysim/jellysimTargets.cmake \
          lib/libjellysim_jellyfish.a include/jellysim/jellyfish/swim_simulation.hpp \
-         share/jellysim/scenes/jellyfish.toml share/jellysim/jellysim_blender.zip; do
+         share/jellysim/scenes/jellyfish.toml share/jellysim/jellysim_blender.zip share/jellysim/web/jellyfish-viewer.js; do
   [[ -e "$prefix/$f" ]] || { echo "FAIL: $f is not installed"; exit 1; }
 done
 "$prefix/bin/jellysim" --version

@@ -57,7 +57,8 @@ struct PipelineSettings {
 };
 
 /// The default viewer bundle: <source dir>/web/dist/jellyfish-viewer.js (built by `npm run build`
-/// in web/, see docs/rendering.md).
+/// in web/, see docs/rendering.md), or, in an installed tree without the sources,
+/// PREFIX/share/jellysim/web/jellyfish-viewer.js beside the running program's PREFIX/bin.
 std::filesystem::path default_viewer_script();
 
 /// Called after each frame: (frames done, frames in all).
