@@ -7,6 +7,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <dlfcn.h>
+#include <future>
+#include <memory>
+#include <thread>
 #include <vector>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -29,6 +32,46 @@ constexpr std::uintptr_t kPage = 4096, kOldGlibcHeader = 16;
 std::uintptr_t page_offset(const void* p) { return reinterpret_cast<std::uintptr_t>(p) % kPage; }
 #endif
 
+#if defined(JELLYSIM_TEST_ASAN)
+/// A thread whose first use of the probe mallocs its own TLS block, placed so that it starts 16
+/// bytes past a page boundary: it allocates blocks of the probe's size until the block `skip`
+/// allocations after the next would start there, then touches the probe, and lives (its block in
+/// its DTV, as Mesa's is during a run) until release(). Same-size allocations come from one size
+/// class in address order; `skip` counts the allocations glibc makes of that class on the way to
+/// the TLS block (none when run alone; one under CTest on this machine, measured).
+class PlacedTlsBlock {
+ public:
+  PlacedTlsBlock(char* (*touch)(), std::intptr_t skip) {
+    auto placed = std::make_shared<std::promise<const char*>>();
+    std::future<const char*> block = placed->get_future();
+    thread_ = std::thread([touch, skip, placed, released = release_.get_future()]() mutable {
+      std::vector<void*> held{std::malloc(kProbeTlsBytes), std::malloc(kProbeTlsBytes)};
+      const auto stride = [&] {
+        return reinterpret_cast<std::intptr_t>(held.back()) - reinterpret_cast<std::intptr_t>(held[held.size() - 2]);
+      };
+      while (held.size() < 100000 &&
+             page_offset(static_cast<char*>(held.back()) + (1 + skip) * stride()) != kOldGlibcHeader)
+        held.push_back(std::malloc(kProbeTlsBytes));
+      const char* b = touch();
+      for (void* p : held) std::free(p);
+      placed->set_value(b);
+      released.wait();
+    });
+    block_ = block.get();
+  }
+  ~PlacedTlsBlock() {
+    release_.set_value();
+    thread_.join();
+  }
+  const char* block() const { return block_; }
+
+ private:
+  std::promise<void> release_;
+  std::thread thread_;
+  const char* block_ = nullptr;
+};
+#endif
+
 TEST(SanitizerDefaults, LeakCheckSurvivesADynamicTlsBlockSixteenBytesPastAPage) {
 #if !defined(JELLYSIM_TEST_ASAN)
   GTEST_SKIP() << "only meaningful under AddressSanitizer";
@@ -37,19 +80,13 @@ TEST(SanitizerDefaults, LeakCheckSurvivesADynamicTlsBlockSixteenBytesPastAPage) 
   ASSERT_NE(library, nullptr) << ::dlerror();
   auto touch = reinterpret_cast<char* (*)()>(::dlsym(library, "tls_probe_touch"));
   ASSERT_NE(touch, nullptr);
-  // Same-size allocations come from one size class in address order: learn the stride, then
-  // allocate until the next block of this size would start 16 bytes past a page boundary.
-  std::vector<void*> held{std::malloc(kProbeTlsBytes), std::malloc(kProbeTlsBytes)};
-  auto stride = [&] {
-    return reinterpret_cast<std::intptr_t>(held.back()) - reinterpret_cast<std::intptr_t>(held[held.size() - 2]);
-  };
-  while (held.size() < 100000 &&
-         page_offset(static_cast<char*>(held.back()) + stride()) != kOldGlibcHeader)
-    held.push_back(std::malloc(kProbeTlsBytes));
-  const char* block = touch();  // glibc mallocs the probe's TLS block now
-  for (void* p : held) std::free(p);
-  ASSERT_EQ(page_offset(block), kOldGlibcHeader) << "the TLS block did not land where intended";
-  EXPECT_EQ(__lsan_do_recoverable_leak_check(), 0);  // dies here if the interceptor is on
+  for (std::intptr_t skip = 0; skip < 4; ++skip) {
+    const PlacedTlsBlock probe(touch, skip);
+    if (page_offset(probe.block()) != kOldGlibcHeader) continue;
+    EXPECT_EQ(__lsan_do_recoverable_leak_check(), 0);  // dies here if the interceptor is on
+    return;
+  }
+  FAIL() << "the TLS block did not land 16 bytes past a page in 4 placements";
 #endif
 }
 
