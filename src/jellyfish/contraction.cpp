@@ -111,8 +111,8 @@ double hermite(double s, double x_b, double x_e, double v_b, double v_e) {
   return (2 * s3 - 3 * s2 + 1) * x_b + (-2 * s3 + 3 * s2) * x_e + (s3 - 2 * s2 + s) * v_b + (s3 - s2) * v_e;
 }
 
-double contraction_value(const ContractionProfile& p, double phase) {
-  const double s = wrap_phase(phase);
+/// Q of one cycle's phase s ∈ [0, 1) without a pause.
+double active_contraction_value(const ContractionProfile& p, double s) {
   switch (p.shape) {
     case ContractionShape::hermite: return hermite_contraction(p, s);
     case ContractionShape::sine: return 0.5 * (1.0 + std::cos(kTwoPi * s));
@@ -121,6 +121,18 @@ double contraction_value(const ContractionProfile& p, double phase) {
     case ContractionShape::trochoid: return trochoid_contraction(p, s);
   }
   return 1.0;
+}
+
+double contraction_value(const ContractionProfile& p, double phase) {
+  const double s = wrap_phase(phase);
+  if (p.pause_fraction <= 0.0) return active_contraction_value(p, s);
+  // The pause (Gemmell et al. 2013): contraction and expansion in the first 1 − pause of the cycle,
+  // contract_fraction still a part of the whole cycle; relaxed (Q = 1) for the rest.
+  const double active = 1.0 - p.pause_fraction;
+  if (s >= active) return 1.0;
+  ContractionProfile within = p;
+  within.contract_fraction = p.contract_fraction / active;
+  return active_contraction_value(within, s / active);
 }
 
 double RestLengthController::update(double t, double current_length, double uncontracted_length, double rest_length,

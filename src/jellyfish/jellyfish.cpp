@@ -156,6 +156,11 @@ void validate(const JellyfishSpec& s) {
   require(s.frequency_hz > 0 && s.frequency_hz <= 100, "frequency", "(0, 100] Hz");
   require(s.gamma > 0 && s.gamma <= 1, "gamma", "(0, 1]");
   require(s.profile.contract_fraction > 0 && s.profile.contract_fraction < 1, "contract_fraction", "(0, 1)");
+  require(s.profile.pause_fraction >= 0 && s.profile.contract_fraction + s.profile.pause_fraction < 1,
+          "pause_fraction", "[0, 1 - contract_fraction)");
+  if (s.profile.pause_fraction != 0 && s.closed_loop)
+    throw std::invalid_argument("field 'jellyfish.pause_fraction' must be 0 with the closed-loop controller "
+                                "(jellyfish.controller = true): the pause belongs to the open-loop contraction");
   require(s.aperture_expansion_exponent >= 1 && s.aperture_expansion_exponent <= 10, "aperture_expansion_exponent",
           "[1, 10]");
   require(s.neural_delay_s >= 0, "neural_delay", "[0, inf) s");

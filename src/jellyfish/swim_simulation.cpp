@@ -45,6 +45,7 @@ std::size_t owner_of_point(const std::vector<int>& first_point, int p) {
 bool same_contraction(const JellyfishSpec& a, const JellyfishSpec& b) {
   return a.frequency_hz == b.frequency_hz && a.gamma == b.gamma && a.phase_cycles == b.phase_cycles &&
          a.profile.shape == b.profile.shape && a.profile.contract_fraction == b.profile.contract_fraction &&
+         a.profile.pause_fraction == b.profile.pause_fraction &&
          a.profile.expansion_exponent == b.profile.expansion_exponent &&
          a.profile.trochoid_skew == b.profile.trochoid_skew &&
          a.aperture_expansion_exponent == b.aperture_expansion_exponent && a.neural_delay_s == b.neural_delay_s &&

@@ -160,6 +160,9 @@ std::vector<Parameter> jellyfish_stroke_parameters() {
       choice("jellyfish.contraction", "hermite", jellyfish::contraction_shape_names(), "contraction function (§7.1, Fig. 6.10)"),
       number("jellyfish.contract_fraction", "0.3", "", Range{0.0, 1.0, true, true},
              "part of the cycle spent contracting (Fig. 6.10)"),
+      number("jellyfish.pause_fraction", "0.0", "", Range{0.0, 1.0, false, true},
+             "part of the cycle resting relaxed after re-expanding (Gemmell et al. 2013); contract_fraction + "
+             "pause_fraction < 1; open-loop contraction only"),
       number("jellyfish.aperture_expansion_exponent", "2.0", "", Range::closed(1.0, 10.0),
              "aperture springs re-expand more slowly (Fig. 7.5); 1: all alike"),
       number("jellyfish.neural_delay", "0.03", "s", Range::closed(0.0, 10.0),
@@ -306,6 +309,7 @@ jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling:
   j.profile.shape = *jellyfish::contraction_shape_from_string(
       r.choice("jellyfish.contraction"));
   j.profile.contract_fraction = r.number("jellyfish.contract_fraction");
+  j.profile.pause_fraction = r.number("jellyfish.pause_fraction");
   j.aperture_expansion_exponent = r.number("jellyfish.aperture_expansion_exponent");
   j.neural_delay_s = r.number("jellyfish.neural_delay");
   j.closed_loop = r.boolean("jellyfish.controller");

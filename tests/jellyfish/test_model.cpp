@@ -58,6 +58,23 @@ TEST(Contraction, HermiteContractsFastAndApertureSpringsReexpandSlower) {
   EXPECT_NEAR(contracted_rest_length(2.0, 0.56, 1.0), 2.0, 1e-12);
 }
 
+// Gemmell et al. (2013)'s pause: contraction over the same part of the cycle, expansion compressed
+// into the rest of the active part, then relaxed (Q = 1) through the pause; no pause is the old curve.
+TEST(Contraction, APauseHoldsTheBellRelaxedAfterReexpanding) {
+  ContractionProfile plain, paused;
+  paused.pause_fraction = 0.4;
+  for (double s = 0.0; s < 0.3; s += 0.01)
+    EXPECT_NEAR(contraction_value(paused, s), contraction_value(plain, s), 1e-12) << s;  // the same contraction
+  EXPECT_NEAR(contraction_value(paused, 0.3), 0.0, 1e-12);
+  EXPECT_NEAR(contraction_value(paused, 0.45), contraction_value(plain, 0.3 + 0.7 * 0.5), 1e-12);  // expansion, halfway
+  EXPECT_LT(contraction_value(paused, 0.59), 1.0);
+  for (double s = 0.6; s < 1.0; s += 0.02) EXPECT_EQ(contraction_value(paused, s), 1.0) << s;  // the pause
+  ContractionProfile sine = paused;
+  sine.shape = ContractionShape::sine;
+  EXPECT_NEAR(contraction_value(sine, 0.3), 0.0, 1e-12);  // the whole shape within the active 60 %
+  EXPECT_EQ(contraction_value(sine, 0.8), 1.0);
+}
+
 JellyfishSpec small_spec() {
   JellyfishSpec s;
   s.aperture_centre_m = {0.4, 0.3};

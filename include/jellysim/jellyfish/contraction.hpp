@@ -25,6 +25,9 @@ struct ContractionProfile {
   /// progress), so a larger p re-expands more slowly at first (springs near the aperture, Fig. 7.5).
   double expansion_exponent = 1.0;
   double trochoid_skew = 0.6;      ///< λ ∈ [0, 1) of the trochoid (Fournier & Reeves): skew of the wave
+  /// Part of the cycle the bell rests relaxed after re-expanding, before the next contraction
+  /// (Gemmell et al. 2013's pause): the shape runs over the first 1 − pause of the cycle, Q = 1 after.
+  double pause_fraction = 0.0;
 };
 
 /// Q(phase) ∈ [0, 1] for a phase in cycles (any real number; the function has period 1);
