@@ -1,7 +1,7 @@
 """Optimise the stroke for speed with jellysim.optimize (docs/control.md): the contraction
-frequency and the part of the cycle spent contracting, on a coarse tank (96 x 192 cells) so that
-it takes a few minutes on two cores. The built-in scene has no pause key: the contraction fraction
-is the timing variable (a short contraction leaves the rest of the cycle to the slow relaxation).
+frequency and the pause after re-expansion (jellyfish.pause_fraction, the part of the cycle the bell
+rests relaxed: Gemmell et al. 2013), on a coarse tank (96 x 192 cells) so that it takes a few
+minutes on two cores.
 
     PYTHONPATH=build/release/python /usr/bin/python3 examples/optimize_stroke.py --out out/optimize_stroke
 """
@@ -24,7 +24,7 @@ def main():
         "evaluations": args.evaluations,
         "seed": 1,
         "set": {"tank.cells": args.cells},
-        "variables": {"jellyfish.frequency": [0.4, 1.4], "jellyfish.contract_fraction": [0.15, 0.6]},
+        "variables": {"jellyfish.frequency": [0.4, 1.4], "jellyfish.pause_fraction": [0.0, 0.5]},
     }
     summary = jellysim.optimize(plan, out=args.out, quiet=False)
     print(f"baseline speed {summary['baseline_objective'] * 100:.3f} cm/s, best {summary['best_objective'] * 100:.3f} cm/s "
