@@ -66,6 +66,14 @@ void check_key(const std::string& key, const std::string& where) {
 
 }  // namespace
 
+toml::table parse_plan_toml(std::string_view text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw InputError(file + ":" + std::to_string(e.source().begin.line) + ": invalid TOML: " + std::string(e.description()));
+  }
+}
+
 std::vector<std::string> read_plan_set(const toml::node& node, const std::string& file) {
   const toml::table* table = node.as_table();
   if (!table) throw InputError(file + ": field 'set' must be a table of key = value");
@@ -167,12 +175,7 @@ std::vector<std::optional<std::string>> BatchPlan::run(std::size_t k) const {
 
 BatchPlan parse_batch_plan(std::string_view text, const std::filesystem::path& file) {
   const std::string name = file.string();
-  toml::table table;
-  try {
-    table = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    throw InputError(name + ":" + std::to_string(e.source().begin.line) + ": invalid TOML: " + std::string(e.description()));
-  }
+  const toml::table table = parse_plan_toml(text, name);
   BatchPlan plan;
   plan.file = file;
   read_top_level(table, name, plan);

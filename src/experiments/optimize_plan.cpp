@@ -194,12 +194,7 @@ const std::vector<std::string>& stroke_figure_names() {
 
 OptimizePlan parse_optimize_plan(std::string_view text, const std::filesystem::path& file) {
   const std::string name = file.string();
-  toml::table table;
-  try {
-    table = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    throw InputError(name + ":" + std::to_string(e.source().begin.line) + ": invalid TOML: " + std::string(e.description()));
-  }
+  const toml::table table = parse_plan_toml(text, name);
   OptimizePlan plan;
   plan.file = file;
   bool had_objective = false;

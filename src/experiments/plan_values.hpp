@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace jellysim::experiments {
@@ -20,6 +21,8 @@ struct PlanLeaf {
 std::vector<PlanLeaf> plan_leaves(const toml::table& table, const std::string& prefix = "");
 /// A plan value as the TOML text of a --set value; `where` names it in errors.
 std::string plan_literal(const toml::node& n, const std::string& where);
+/// A plan file's text parsed as TOML; a syntax error is an InputError naming `file` and the line.
+toml::table parse_plan_toml(std::string_view text, const std::string& file);
 /// [set]: key=value assignments for every run, in plan order (`scene` refused). `file` names it.
 std::vector<std::string> read_plan_set(const toml::node& node, const std::string& file);
 
