@@ -19,7 +19,7 @@
 
 #include "jellysim/viewer/viewer.hpp"
 #ifdef JELLYSIM_MPI
-#include "batch_mpi.hpp"
+#include "mpi_backend.hpp"
 #endif
 
 #include <CLI/CLI.hpp>
@@ -515,14 +515,24 @@ long mpi_ranks_from_environment() {
   return 1;
 }
 
-/// Every command but `batch` is one process: N ranks of it would write the same files at once.
+/// Every command but `batch` (and, with the MPI backend, `optimize`) is one process: N ranks of it
+/// would write the same files at once.
 void refuse_several_ranks(const std::string& command) {
   const long ranks = mpi_ranks_from_environment();
   if (ranks <= 1) return;
   throw js::InputError("`jellysim " + command + "` was started as " + std::to_string(ranks) +
-                       " MPI ranks: only `jellysim batch` spreads runs over ranks (the others would write the same "
-                       "files at once). A frequency sweep on MPI is a batch plan with [product] "
+                       " MPI ranks: only `jellysim batch` and `optimize`'s Pareto sweep spread work over ranks (the others "
+                       "would write the same files at once). A frequency sweep on MPI is a batch plan with [product] "
                        "\"jellyfish.frequency\" = [...] (docs/batch.md)");
+}
+
+/// The commands with an MPI backend.
+bool spreads_over_ranks(const std::string& command) {
+#ifdef JELLYSIM_MPI
+  return command == "batch" || command == "optimize";
+#else
+  return command == "batch";
+#endif
 }
 
 /// `jellysim batch`: over MPI when an MPI launcher started this process, else on threads.
@@ -569,6 +579,12 @@ void add_optimize_options(CLI::App& cmd, OptimizeCommand& o) {
 int run_optimize_command(const OptimizeCommand& o) {
   if (o.out.empty() || o.out.front() == '-') throw js::InputError("--out '" + o.out + "': give a directory after --out");
   const std::string mode = progress_mode(o.progress, o.quiet);
+#ifdef JELLYSIM_MPI
+  if (jellysim::app::launched_by_mpi()) {  // a Pareto sweep's sub-problems over the ranks
+    const int code = jellysim::app::run_optimize_mpi(o.plan, o.out, o.quiet || mode == "none");
+    return report_status(mode, code, o.out, code == 0 ? "optimize: " + o.out + "/summary.json" : "optimize stopped");
+  }
+#endif
   js::experiments::run_optimize(js::experiments::read_optimize_plan(o.plan), o.out, o.quiet || mode == "none", {},
                                 mode == "json" ? json_count_progress("optimize", "evaluations")
                                                : js::experiments::EvaluationProgress{});
@@ -754,7 +770,7 @@ int run_parsed(const std::vector<std::pair<CLI::App*, std::function<int()>>>& ru
       if (const CLI::Option* p = command->get_option_no_throw("--progress"); p != nullptr) mode = p->as<std::string>();
       if (const CLI::Option* d = command->get_option_no_throw("--out"); d != nullptr && d->count() > 0)
         out = d->as<std::string>();
-      if (command->get_name() != "batch") refuse_several_ranks(command->get_name());
+      if (!spreads_over_ranks(command->get_name())) refuse_several_ranks(command->get_name());
       const int code = run();
       // A command that writes no status line of its own (a new one) still ends --progress json with one.
       return report_status(mode, code, out, command->get_name() + (code == 0 ? ": done" : ": exit " + std::to_string(code)));

@@ -62,10 +62,7 @@ std::vector<double> scene_values(const OptimizePlan& plan) {
   return x;
 }
 
-namespace {
-
-/// Validates the evaluations at both corners of the box as `simulate` would, before anything runs.
-void validate_plan(const OptimizePlan& plan) {
+void validate_plan_against_scene(const OptimizePlan& plan) {
   scene_values(plan);  // every variable a number of the scene
   for (const bool upper : {false, true}) {
     std::vector<double> x;
@@ -81,6 +78,8 @@ void validate_plan(const OptimizePlan& plan) {
     throw InputError(plan.file.string() + ": field 'algorithm' = \"bobyqa\" needs at least 2 variables (use cobyla, "
                      "sbplx or direct for one)");
 }
+
+namespace {
 
 void write_progress_png(const OptimizeRun& run, const io::OutputDir& out, const std::string& objective) {
   render::Series all{"evaluations", {}, {}, true, false};
@@ -136,7 +135,7 @@ nlohmann::ordered_json optimize_summary(const OptimizeRun& run, double wall_seco
 nlohmann::ordered_json run_optimize(const OptimizePlan& plan, const fs::path& out_path, bool quiet,
                                     const Evaluator& evaluator, const EvaluationProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  validate_plan(plan);
+  validate_plan_against_scene(plan);
   if (plan.objectives.size() == 2) return run_pareto(plan, out_path, quiet, evaluator ? evaluator : swim_evaluator(plan));
   OptimizeRun run(plan, evaluator ? evaluator : swim_evaluator(plan), quiet);
   run.previous = read_evaluations_csv(out_path / "evaluations.csv", run.columns(), plan.variables.size());

@@ -1,8 +1,9 @@
 // The two-objective mode of `jellysim optimize` (docs/control.md, "Pareto front"): a weighted-sum
 // sweep, weight w_k = k/(K−1) of the first objective and 1 − w_k of the second, each over the
 // magnitude of the baseline's value, signed so that both are minimised. The K sub-problems are
-// independent optimisations from the scene's stroke, run on threads (WorkerPool::run_tasks); their
-// rows go to evaluations.csv in sub-problem order whatever the thread count. pareto.csv holds the
+// independent optimisations from the scene's stroke, run on threads (WorkerPool::run_tasks) or, under
+// mpirun, on MPI ranks (src/app/mpi_backend.cpp); their rows go to evaluations.csv in sub-problem
+// order whatever the backend. pareto.csv holds the
 // non-dominated feasible evaluations of all of them.
 #include "optimize_search.hpp"
 
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 namespace jellysim::experiments {
 namespace {
@@ -73,7 +75,7 @@ void write_pareto_files(const io::OutputDir& out, const OptimizePlan& plan, cons
   chart.x_unit = objective_unit(plan.objectives[0]);
   chart.y_unit = objective_unit(plan.objectives[1]);
   chart.series = {everything, line};
-  render::write_chart_png(chart, out.file("pareto.png"));
+  out.write_text("pareto.png", render::chart_png(chart));  // listed in the manifest: a rerun resumes
 }
 
 /// The sub-problems, each given its rows of an earlier run (or the baseline row to replay).
@@ -99,47 +101,94 @@ std::vector<std::unique_ptr<OptimizeRun>> sub_problems(const OptimizePlan& plan,
 
 }  // namespace
 
-nlohmann::ordered_json run_pareto(const OptimizePlan& plan, const std::filesystem::path& out_path, bool quiet,
-                                  const Evaluator& evaluator) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<double> x0 = scene_values(plan);
-  OptimizeRun probe(plan, evaluator, true);  // the baseline, once: it scales both terms of every weight
-  const SearchRow base = probe.evaluate(x0);
-  if (base.failed) throw RunError("optimize: the baseline evaluation (the scene's own stroke) failed");
-  const std::vector<SearchRow> previous =
-      read_evaluations_csv(out_path / "evaluations.csv", probe.columns(), plan.variables.size());
-  std::vector<std::unique_ptr<OptimizeRun>> runs = sub_problems(plan, evaluator, quiet, previous, base);
-  const io::OutputDir out = io::OutputDir::for_run(out_path, "optimize");
-  const auto all_rows = [&] {
+struct ParetoSweep::State {
+  const OptimizePlan& plan;
+  std::filesystem::path out_path;
+  std::unique_ptr<OptimizeRun> probe;  // the baseline, once: it scales both terms of every weight
+  SearchRow base;
+  std::vector<std::unique_ptr<OptimizeRun>> runs;
+  std::optional<io::OutputDir> out;
+  std::mutex mutex;
+
+  std::vector<const SearchRow*> all_rows() const {
     std::vector<const SearchRow*> all;
     for (const auto& r : runs)
       for (const SearchRow& row : r->rows) all.push_back(&row);
     return all;
-  };
-  std::mutex mutex;
-  for (auto& r : runs)
-    r->on_row = [&] {
-      const std::lock_guard<std::mutex> lock(mutex);
-      out.write_text("evaluations.csv", OptimizeRun::csv_text(probe.columns(), all_rows()));
-    };
-  WorkerPool pool(std::max(1, std::min(resolve_threads(plan.threads), plan.pareto_points)));
-  pool.run_tasks(runs.size(), [&](std::size_t k) {
-    const SerialThreadsScope serial;  // each sub-problem on one core
-    runs[k]->search(x0);
-  });
-  out.write_text("evaluations.csv", OptimizeRun::csv_text(probe.columns(), all_rows()));
-  write_pareto_files(out, plan, all_rows());
+  }
+  /// evaluations.csv of every sub-problem's rows so far, in sub-problem order.
+  void write_evaluations() {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (out) out->write_text("evaluations.csv", OptimizeRun::csv_text(probe->columns(), all_rows()));
+  }
+};
+
+ParetoSweep::ParetoSweep(const OptimizePlan& plan, const std::filesystem::path& out, bool quiet, const Evaluator& evaluator)
+    : state_(new State{plan, out, {}, {}, {}, {}, {}}) {
+  const Evaluator e = evaluator ? evaluator : swim_evaluator(plan);
+  state_->probe = std::make_unique<OptimizeRun>(plan, e, true);
+  state_->base = state_->probe->evaluate(scene_values(plan));
+  if (state_->base.failed) throw RunError("optimize: the baseline evaluation (the scene's own stroke) failed");
+  const std::vector<SearchRow> previous =
+      read_evaluations_csv(out / "evaluations.csv", state_->probe->columns(), plan.variables.size());
+  state_->runs = sub_problems(plan, e, quiet, previous, state_->base);
+  for (auto& r : state_->runs) r->on_row = [s = state_.get()] { s->write_evaluations(); };
+}
+
+ParetoSweep::~ParetoSweep() = default;
+
+std::size_t ParetoSweep::size() const { return state_->runs.size(); }
+double ParetoSweep::weight(std::size_t k) const { return state_->runs.at(k)->weight; }
+std::size_t ParetoSweep::evaluations(std::size_t k) const { return state_->runs.at(k)->rows.size(); }
+
+void ParetoSweep::open_output() { state_->out.emplace(io::OutputDir::for_run(state_->out_path, "optimize")); }
+
+std::string ParetoSweep::solve(std::size_t k) {
+  OptimizeRun& run = *state_->runs.at(k);
+  run.search(scene_values(state_->plan));
+  std::vector<const SearchRow*> rows;
+  for (const SearchRow& r : run.rows) rows.push_back(&r);
+  return OptimizeRun::csv_text(run.columns(), rows);
+}
+
+void ParetoSweep::accept(std::size_t k, const std::string& rows) {
+  OptimizeRun& run = *state_->runs.at(k);
+  run.adopt(parse_evaluations_csv(rows, run.columns(), state_->plan.variables.size()));
+  state_->write_evaluations();
+}
+
+nlohmann::ordered_json ParetoSweep::finish(const std::string& engine, double wall_seconds) {
+  State& s = *state_;
+  if (!s.out) open_output();
+  s.write_evaluations();
+  write_pareto_files(*s.out, s.plan, s.all_rows());
   nlohmann::ordered_json j;
-  j["objectives"] = plan.objectives;
-  j["algorithm"] = plan.algorithm;
-  j["weights"] = plan.pareto_points;
-  j["baseline_objectives"] = base.objectives;
-  j["pareto_points"] = front(all_rows(), plan).size();
-  j["evaluations"] = all_rows().size();
-  j["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_summary(out, "optimize", evaluation_config(plan, x0), j, "");
-  out.finish_manifest();
+  j["objectives"] = s.plan.objectives;
+  j["algorithm"] = s.plan.algorithm;
+  j["weights"] = s.plan.pareto_points;
+  j["baseline_objectives"] = s.base.objectives;
+  j["pareto_points"] = front(s.all_rows(), s.plan).size();
+  j["evaluations"] = s.all_rows().size();
+  j["engine"] = engine;
+  j["wall_seconds"] = wall_seconds;
+  write_summary(*s.out, "optimize", evaluation_config(s.plan, scene_values(s.plan)), j, "");
+  s.out->finish_manifest();
   return j;
+}
+
+nlohmann::ordered_json run_pareto(const OptimizePlan& plan, const std::filesystem::path& out_path, bool quiet,
+                                  const Evaluator& evaluator) {
+  const auto start = std::chrono::steady_clock::now();
+  ParetoSweep sweep(plan, out_path, quiet, evaluator);
+  sweep.open_output();
+  const int threads = std::max(1, std::min(resolve_threads(plan.threads), plan.pareto_points));
+  WorkerPool pool(threads);
+  pool.run_tasks(sweep.size(), [&](std::size_t k) {
+    const SerialThreadsScope serial;  // each sub-problem on one core
+    sweep.solve(k);
+  });
+  return sweep.finish("threads: " + std::to_string(threads),
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace jellysim::experiments

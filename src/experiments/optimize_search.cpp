@@ -164,11 +164,7 @@ const SearchRow& OptimizeRun::evaluate(const std::vector<double>& x) {
     }
     row = make_row(x, e);
   }
-  row.feasible = !row.failed && std::isfinite(row.objective);
-  for (std::size_t i = 0; i < plan.constraints.size(); ++i)
-    row.feasible = row.feasible && violation(row.constraints[i], plan.constraints[i].lower, plan.constraints[i].upper) == 0;
-  row.minimised = minimised(row);
-  rows.push_back(row);
+  append(row);
   if (on_evaluation) on_evaluation(rows.size(), static_cast<std::size_t>(total));
   if (on_row) on_row();
   else if (out) out->write_text("evaluations.csv", csv_text(columns(), [&] {
@@ -182,6 +178,19 @@ const SearchRow& OptimizeRun::evaluate(const std::vector<double>& x) {
     std::cout << " -> " << io::format_double(row.objective) << (row.failed ? " (failed)" : row.feasible ? "" : " (infeasible)") << std::endl;
   }
   return rows.back();
+}
+
+void OptimizeRun::append(SearchRow row) {
+  row.feasible = !row.failed && std::isfinite(row.objective);
+  for (std::size_t i = 0; i < plan.constraints.size(); ++i)
+    row.feasible = row.feasible && violation(row.constraints[i], plan.constraints[i].lower, plan.constraints[i].upper) == 0;
+  row.minimised = minimised(row);
+  rows.push_back(std::move(row));
+}
+
+void OptimizeRun::adopt(const std::vector<SearchRow>& solved) {
+  rows.clear();
+  for (const SearchRow& r : solved) append(r);
 }
 
 void OptimizeRun::search(const std::vector<double>& x0) {
@@ -252,13 +261,18 @@ std::string OptimizeRun::csv_text(const std::vector<std::string>& columns, const
 
 std::vector<SearchRow> read_evaluations_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
                                            std::size_t variables) {
-  std::vector<SearchRow> rows;
   std::string text;
   try {
     text = io::read_regular_file(path, 64u << 20, false);
   } catch (const std::exception&) {
-    return rows;
+    return {};
   }
+  return parse_evaluations_csv(text, columns, variables);
+}
+
+std::vector<SearchRow> parse_evaluations_csv(const std::string& text, const std::vector<std::string>& columns,
+                                            std::size_t variables) {
+  std::vector<SearchRow> rows;
   std::stringstream lines(text);
   std::string line;
   if (!std::getline(lines, line) || split_csv(line) != columns) return rows;

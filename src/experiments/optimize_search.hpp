@@ -50,11 +50,16 @@ class OptimizeRun {
   bool better(double a, double b) const { return plan.maximize ? a > b : a < b; }
   /// The row at x: found again, replayed from `previous`, or evaluated now.
   const SearchRow& evaluate(const std::vector<double>& x);
+  /// Rows solved elsewhere (another MPI rank), as this run would have recorded them: feasibility
+  /// and NLopt's minimised value recomputed in order.
+  void adopt(const std::vector<SearchRow>& solved);
   /// evaluations.csv's text for these rows.
   static std::string csv_text(const std::vector<std::string>& columns, const std::vector<const SearchRow*>& rows);
 
  private:
   SearchRow make_row(const std::vector<double>& x, const Evaluation& e) const;
+  /// Records a row: its feasibility and what NLopt minimises.
+  void append(SearchRow row);
   double minimised(const SearchRow& r) const;
   bool native_constraints() const;
 
@@ -67,14 +72,18 @@ class OptimizeRun {
 std::vector<SearchRow> read_evaluations_csv(const std::filesystem::path& path, const std::vector<std::string>& columns,
                                            std::size_t variables);
 
+/// The rows of evaluations.csv's text with these columns (as read_evaluations_csv).
+std::vector<SearchRow> parse_evaluations_csv(const std::string& text, const std::vector<std::string>& columns,
+                                            std::size_t variables);
+
 /// The swim evaluator of a plan (evaluate_swim with its target).
 Evaluator swim_evaluator(const OptimizePlan& plan);
 
 /// The scene's own values of the plan's variables.
 std::vector<double> scene_values(const OptimizePlan& plan);
 
-/// Two objectives: a weighted-sum sweep (docs/control.md), its sub-problems on threads; writes
-/// evaluations.csv, pareto.csv, pareto.png, best.toml (the sweep's first weight) and summary.json.
+/// Two objectives: a weighted-sum sweep (docs/control.md), its sub-problems (ParetoSweep) on
+/// threads; writes evaluations.csv, pareto.csv, pareto.png and summary.json.
 nlohmann::ordered_json run_pareto(const OptimizePlan& plan, const std::filesystem::path& out, bool quiet,
                                   const Evaluator& evaluator);
 

@@ -1,6 +1,6 @@
 // `jellysim batch` (docs/batch.md): the plan's reading and validation, the threaded backend's
 // batch.csv, a failing run's row, and resuming a killed batch. The MPI backend's byte-for-byte
-// comparison with the threaded one is tests/app/batch_mpi_test.sh (registered when MPI is built).
+// comparison with the threaded one is tests/app/mpi_backend_test.sh (registered when MPI is built).
 #include <gtest/gtest.h>
 
 #include "../cli_runner.hpp"

@@ -2,7 +2,7 @@
 // `jellysim batch PLAN.toml --out DIR`: many jellyfish runs, each a `jellysim simulate` of the
 // plan's scene with its own --set overrides, written to DIR/runs/NNNN/, and one combined table
 // DIR/batch.csv (docs/batch.md). This file holds the plan, the runs and the tables; the threaded
-// backend is run_batch_threaded, the MPI backend lives in the app (src/app/batch_mpi.cpp) and uses
+// backend is run_batch_threaded, the MPI backend lives in the app (src/app/mpi_backend.cpp) and uses
 // the same pieces, so both write the same bytes.
 #include "jellysim/config/config.hpp"
 #include "jellysim/io/output.hpp"

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +88,11 @@ Evaluation evaluate_swim(const config::Config& config, const std::optional<Vec2>
 /// values and the duration (cycles / frequency). Throws InputError as resolve_config does.
 config::Config evaluation_config(const OptimizePlan& plan, const std::vector<double>& x);
 
+/// Checks the plan against the scene: every variable a number the scene reads, the evaluations at
+/// both corners of the box valid as `simulate` would check them, the algorithm able to take the
+/// variables. Throws InputError naming the plan and field; run_optimize calls it first.
+void validate_plan_against_scene(const OptimizePlan& plan);
+
 /// Checks the plan against the scene (every variable a number the scene reads, both bounds
 /// accepted, the duration), then runs it into `out`: evaluations.csv (resumed from when present),
 /// best.toml, progress.png, summary.json (and pareto.csv, pareto.png for two objectives). Throws
@@ -95,5 +101,39 @@ config::Config evaluation_config(const OptimizePlan& plan, const std::vector<dou
 /// report only their end).
 nlohmann::ordered_json run_optimize(const OptimizePlan& plan, const std::filesystem::path& out, bool quiet,
                                     const Evaluator& evaluator = {}, const EvaluationProgress& progress = {});
+
+/// The Pareto sweep of a two-objective plan (docs/control.md, "Pareto front") as independent
+/// sub-problems, one per weight, for a backend that solves them where it likes: run_optimize's
+/// threads, or the MPI ranks of `jellysim optimize` under mpirun. Every rank builds the sweep from
+/// the plan (the baseline evaluated once per rank, the earlier run's evaluations.csv read for the
+/// resume); a sub-problem's rows travel as evaluations.csv text; only the rank that opened the
+/// output writes files, in sub-problem order, so every backend writes the same bytes.
+class ParetoSweep {
+ public:
+  ParetoSweep(const OptimizePlan& plan, const std::filesystem::path& out, bool quiet, const Evaluator& evaluator = {});
+  ~ParetoSweep();
+  ParetoSweep(const ParetoSweep&) = delete;
+  ParetoSweep& operator=(const ParetoSweep&) = delete;
+
+  /// The sub-problems (the plan's pareto_points).
+  std::size_t size() const;
+  /// The weight of objectives[0] in sub-problem k.
+  double weight(std::size_t k) const;
+  /// Creates the output directory: from now on each evaluation here rewrites evaluations.csv.
+  void open_output();
+  /// Solves sub-problem k here (one NLopt search); returns its rows as evaluations.csv text.
+  std::string solve(std::size_t k);
+  /// Sub-problem k's rows solved elsewhere (solve's text); rewrites evaluations.csv.
+  void accept(std::size_t k, const std::string& rows);
+  /// Evaluations in sub-problem k so far.
+  std::size_t evaluations(std::size_t k) const;
+  /// Writes evaluations.csv, pareto.csv, pareto.png, best.toml and summary.json (with `engine`,
+  /// e.g. "threads: 2"); returns summary.json's figures.
+  nlohmann::ordered_json finish(const std::string& engine, double wall_seconds);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace jellysim::experiments
