@@ -15,6 +15,15 @@
 namespace jellysim::io {
 namespace {
 
+geometry::GeometrySettings small_settings() {
+  geometry::GeometrySettings s;
+  s.latitude_samples = 21;
+  s.disc_points = 16;
+  s.tentacle_count = 4;
+  s.tentacle_samples = 6;
+  return s;
+}
+
 geometry::Animation small_animation(int frames) {
   std::vector<jellyfish::SliceFrame> slices;
   for (int k = 0; k < frames; ++k) {
@@ -24,12 +33,7 @@ geometry::Animation small_animation(int frames) {
     spec.aperture_centre_m = {0.0, 0.002 * k};
     slices.push_back(geometry::synthetic_bell(spec));
   }
-  geometry::GeometrySettings s;
-  s.latitude_samples = 21;
-  s.disc_points = 16;
-  s.tentacle_count = 4;
-  s.tentacle_samples = 6;
-  return geometry::build_animation(slices, s);
+  return geometry::build_animation(slices, small_settings());
 }
 
 TEST(MeshFiles, ObjHasEveryVertexNormalAndFace) {
@@ -186,12 +190,7 @@ double accessor_value(const GlbContents& glb, int a, std::size_t i, std::size_t 
 /// A small bell (its UVs: geometry::texture_coordinates) translating rigidly at `velocity` (m/s)
 /// relative to a pivot at the origin, at `anim`'s times.
 GlbBody translating_body(const geometry::Animation& anim, geometry::Vec3 velocity) {
-  geometry::GeometrySettings s;
-  s.latitude_samples = 21;
-  s.disc_points = 16;
-  s.tentacle_count = 4;
-  s.tentacle_samples = 6;
-  const geometry::FrameGeometry g = geometry::GeometryBuilder(s, 0.028).build(geometry::synthetic_bell({}));
+  const geometry::FrameGeometry g = geometry::GeometryBuilder(small_settings(), 0.028).build(geometry::synthetic_bell({}));
   GlbBody body{"jellyfish_1", g.mesh, {}, {}, geometry::texture_coordinates(g), true};
   for (double t : anim.times_s) {
     std::vector<geometry::Vec3> p = g.mesh.positions;
