@@ -176,8 +176,10 @@ class CacheRecorder {
       }
       bodies.push_back(std::move(g));
     }
-    for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, true});
-    for (const Body& b : snow_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, true});
+    // Velocities for the jellyfish only: the obstacles hardly move and the snow drifts slowly; each
+    // body with them costs 4 bytes per vertex and morph target (docs/rendering.md).
+    for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, false});
+    for (const Body& b : snow_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, false});
     return bodies;
   }
   void write(const PipelineSettings& s, const std::vector<double>& times, const io::OutputDir& out,
