@@ -15,6 +15,7 @@
 #include "jellysim/geometry/marine_snow.hpp"
 #include "jellysim/geometry/obstacle_mesh.hpp"
 #include "jellysim/geometry/rendering_model.hpp"
+#include "jellysim/geometry/texture_coordinates.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/mesh_files.hpp"
 #include "jellysim/io/point_caches.hpp"
@@ -146,15 +147,18 @@ class CacheRecorder {
     for (std::size_t j = 0; j < jellyfish; ++j) bodies_[j].name = "jellyfish_" + std::to_string(j + 1);
   }
   void add(const std::vector<geometry::FrameGeometry>& parts, const geometry::Mesh& merged) {
-    for (std::size_t j = 0; j < parts.size(); ++j) record(bodies_[j], parts[j].mesh, umbrella_centre(parts[j]));
+    for (std::size_t j = 0; j < parts.size(); ++j) {
+      if (bodies_[j].frames.empty()) bodies_[j].uv = geometry::texture_coordinates(parts[j]);
+      record(bodies_[j], parts[j].mesh, umbrella_centre(parts[j]));
+    }
     geometry::Mesh obstacles = part_mesh(merged, "obstacles");
     if (!obstacles.positions.empty()) {
-      if (obstacle_body_.empty()) obstacle_body_.push_back({"obstacles", {}, {}, {}});
+      if (obstacle_body_.empty()) obstacle_body_.push_back({"obstacles", {}, {}, {}, {}});
       record(obstacle_body_.front(), obstacles, Vec3{});
     }
     geometry::Mesh snow = part_mesh(merged, "snow");
     if (!snow.positions.empty()) {
-      if (snow_body_.empty()) snow_body_.push_back({"marine_snow", {}, {}, {}});
+      if (snow_body_.empty()) snow_body_.push_back({"marine_snow", {}, {}, {}, {}});
       record(snow_body_.front(), snow, Vec3{});
     }
   }
@@ -163,7 +167,7 @@ class CacheRecorder {
   std::vector<io::GlbBody> glb_bodies() const {
     std::vector<io::GlbBody> bodies;
     for (const Body& b : bodies_) {
-      io::GlbBody g{b.name, b.rest, {}, b.roots};
+      io::GlbBody g{b.name, b.rest, {}, b.roots, b.uv, true};
       for (Vec3& p : g.first.positions) p = p - b.roots.front();
       for (std::size_t k = 0; k < b.frames.size(); ++k) {
         std::vector<Vec3> local = b.frames[k];
@@ -172,12 +176,14 @@ class CacheRecorder {
       }
       bodies.push_back(std::move(g));
     }
-    for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}});
-    for (const Body& b : snow_body_) bodies.push_back({b.name, b.rest, b.frames, {}});
+    // Velocities for the jellyfish only: the obstacles hardly move and the snow drifts slowly; each
+    // body with them costs 4 bytes per vertex and morph target (docs/rendering.md).
+    for (const Body& b : obstacle_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, false});
+    for (const Body& b : snow_body_) bodies.push_back({b.name, b.rest, b.frames, {}, {}, false});
     return bodies;
   }
   void write(const PipelineSettings& s, const std::vector<double>& times, const io::OutputDir& out,
-             AnimationOutputs& result) const {
+             const io::ExportCamera& camera, AnimationOutputs& result) const {
     std::vector<const Body*> all;
     for (const Body& b : bodies_) all.push_back(&b);
     for (const Body& b : obstacle_body_) all.push_back(&b);
@@ -185,7 +191,7 @@ class CacheRecorder {
       const io::OutputDir caches = out.subdirectory("caches");
       for (const Body* b : all) {
         const std::string comment = "jellysim rest mesh (frame 0) of " + b->name + "; metres, y up";
-        caches.write_text(b->name + ".obj", io::obj_text(b->rest, comment, b->name));
+        caches.write_text(b->name + ".obj", io::obj_text(b->rest, comment, b->name, b->uv));
         result.files.push_back("caches/" + b->name + ".obj");
         if (s.pc2) {
           caches.write_text(b->name + ".pc2", io::pc2_bytes(b->frames, 0.0));
@@ -197,21 +203,7 @@ class CacheRecorder {
         }
       }
     }
-    if (s.usda) {
-      std::vector<io::UsdBody> stage;
-      for (const Body* b : all) {
-        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}};
-        if (b->name == "obstacles") u.colour = {0.23, 0.2, 0.17};
-        for (std::size_t k = 0; k < b->frames.size(); ++k) {
-          std::vector<Vec3> local = b->frames[k];
-          for (Vec3& p : local) p = p - b->roots[k];
-          u.points.push_back(std::move(local));
-        }
-        stage.push_back(std::move(u));
-      }
-      out.write_text("jellyfish.usda", io::usda_text(stage, s.fps, "jellysim: one prim per jellyfish and for the obstacles"));
-      result.files.push_back("jellyfish.usda");
-    }
+    if (s.usda) write_usda(s, all, out, camera, result);
   }
 
  private:
@@ -220,7 +212,27 @@ class CacheRecorder {
     geometry::Mesh rest;            ///< frame 0 (world positions)
     io::PointFrames frames;         ///< world positions per frame
     std::vector<Vec3> roots;        ///< per frame
+    std::vector<geometry::TexCoord> uv;  ///< per vertex (jellyfish), or empty
   };
+  static void write_usda(const PipelineSettings& s, const std::vector<const Body*>& all, const io::OutputDir& out,
+                         const io::ExportCamera& camera, AnimationOutputs& result) {
+    {
+      std::vector<io::UsdBody> stage;
+      for (const Body* b : all) {
+        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}, b->uv, true};
+        if (b->name == "obstacles") u.colour = {0.23, 0.2, 0.17};
+        for (std::size_t k = 0; k < b->frames.size(); ++k) {
+          std::vector<Vec3> local = b->frames[k];
+          for (Vec3& p : local) p = p - b->roots[k];
+          u.points.push_back(std::move(local));
+        }
+        stage.push_back(std::move(u));
+      }
+      out.write_text("jellyfish.usda", io::usda_text(stage, s.fps, "jellysim: one prim per jellyfish and for the obstacles",
+                                                     s.look, camera));
+      result.files.push_back("jellyfish.usda");
+    }
+  }
   static void record(Body& b, const geometry::Mesh& mesh, Vec3 root) {
     if (b.frames.empty()) b.rest = mesh;
     b.frames.push_back(mesh.positions);
@@ -285,8 +297,10 @@ constexpr const char* kViewerHtml = R"(<!doctype html>
 // (from the .glb's asset extras) and imports it.
 constexpr const char* kBlenderImport = R"py(# Opens jellysim's animation in Blender with the simulation's frame rate and frame range (glTF has
 # no place for them, so jellysim writes them into jellyfish.glb's asset extras and this script
-# sets the scene from there before importing):
+# sets the scene from there before importing), looking through the exported film camera at the
+# rendered frames' size:
 #   blender --python blender_import.py          (or Scripting > Open > Run in a running Blender)
+# The materials (glTF PBR with transmission, volume and IOR) arrive through Blender's importer.
 import json
 import os
 import struct
@@ -298,7 +312,8 @@ path = os.path.join(here, "jellyfish.glb")
 with open(path, "rb") as f:
     f.read(12)
     length, _ = struct.unpack("<II", f.read(8))
-    extras = json.loads(f.read(length))["asset"].get("extras", {})
+    document = json.loads(f.read(length))
+extras = document["asset"].get("extras", {})
 fps = extras.get("frames_per_second", 30.0)
 frames = int(extras.get("frame_count", 1))
 scene = bpy.context.scene
@@ -308,14 +323,17 @@ bpy.ops.import_scene.gltf(filepath=path, import_shading="SMOOTH")
 # The importer puts the first sample at frame 0 when the scene starts there.
 scene.frame_start = 0
 scene.frame_end = frames - 1
-print(f"jellysim: {frames} frames at {fps:g} fps (scene {scene.frame_start}-{scene.frame_end})")
+# The film camera: the picture's size from its extras, so the shot is framed as jellysim's frames.
+cameras = [o for o in scene.objects if o.type == "CAMERA"]
+if cameras:
+    scene.camera = cameras[0]
+    size = document.get("cameras", [{}])[0].get("extras", {})
+    if size.get("width_px") and size.get("height_px"):
+        scene.render.resolution_x, scene.render.resolution_y = size["width_px"], size["height_px"]
+        scene.render.resolution_percentage = 100
+print(f"jellysim: {frames} frames at {fps:g} fps (scene {scene.frame_start}-{scene.frame_end})"
+      + (f", camera {scene.camera.name}" if cameras else ""))
 )py";
-
-std::vector<io::GlbMaterial> glb_materials(const PipelineSettings& p) {
-  const RenderStyle& s = p.style;
-  return {{"umbrella", s.umbrella, 0.3}, {"tentacles", s.tentacles, 0.5}, {"obstacles", s.obstacles, 0.9},
-          {"snow", s.snow, 0.6}};
-}
 
 void write_viewer(const PipelineSettings& s, const std::string& glb, const io::OutputDir& out,
                   AnimationOutputs& result) {
@@ -349,6 +367,17 @@ std::filesystem::path default_viewer_script() {
   if (error) return in_source;
   const std::filesystem::path installed = exe.parent_path().parent_path() / "share/jellysim/web/jellyfish-viewer.js";
   return std::filesystem::is_regular_file(installed) ? installed : in_source;
+}
+
+io::ExportLook export_look(const RenderStyle& style) {
+  io::ExportLook look;
+  look.bell_color = {style.umbrella[0], style.umbrella[1], style.umbrella[2]};
+  look.umbrella_opacity = style.umbrella[3];
+  look.tentacle_color = {style.tentacles[0], style.tentacles[1], style.tentacles[2]};
+  look.tentacle_opacity = style.tentacles[3];
+  look.obstacle_rgba = style.obstacles;
+  look.snow_rgba = style.snow;
+  return look;
 }
 
 nlohmann::ordered_json AnimationOutputs::figures() const {
@@ -389,6 +418,20 @@ void merge_meshes(const std::vector<geometry::FrameGeometry>& parts, geometry::M
     const auto count = static_cast<std::uint32_t>(merged.indices.size()) - first_index;
     if (count > 0) merged.parts.push_back({name, first_index, count});
   }
+}
+
+/// The texture coordinates of merge_meshes's mesh: every umbrella's, then every tentacle tube's.
+std::vector<geometry::TexCoord> merged_texture_coordinates(const std::vector<geometry::FrameGeometry>& parts) {
+  std::vector<std::vector<geometry::TexCoord>> uv;
+  for (const geometry::FrameGeometry& g : parts) uv.push_back(geometry::texture_coordinates(g));
+  std::vector<geometry::TexCoord> merged;
+  for (const char* name : {"umbrella", "tentacles"})
+    for (std::size_t j = 0; j < parts.size(); ++j)
+      if (const geometry::MeshPart* part = parts[j].mesh.part(name); part && part->index_count > 0) {
+        const geometry::VertexRange r = geometry::vertex_range(parts[j].mesh, *part);
+        merged.insert(merged.end(), uv[j].begin() + r.first, uv[j].begin() + r.first + r.count);
+      }
+  return merged;
 }
 
 }  // namespace
@@ -505,6 +548,8 @@ class AnimationWriter {
     if (k > 0 && !geometry::same_topology(animation_.frames.front(), g.mesh))
       throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
     const Camera view = next_view();
+    result_.cameras.push_back(view);
+    if (k == 0 && s_.obj) frame_uv_ = merged_texture_coordinates(parts_);
     if (writers_.pixels) render_frame(k, g.mesh, view);
     write_frame_meshes(k, g.mesh);
     result_.vertices = g.mesh.vertex_count();
@@ -519,7 +564,7 @@ class AnimationWriter {
       writers_.video_file->commit();
       result_.files.push_back("jellyfish.mp4");
     }
-    if (caching_) caches_.write(s_, animation_.times_s, out_, result_);
+    if (caching_) caches_.write(s_, animation_.times_s, out_, export_camera(), result_);
     if (s_.glb) write_glb();
     result_.frames = rendered;
     const auto per_frame = static_cast<double>(std::max<std::size_t>(rendered, 1));
@@ -581,7 +626,7 @@ class AnimationWriter {
     const std::string comment =
         "jellysim frame " + std::to_string(k) + " t = " + io::format_double(school_.front()[k].time_s) + " s";
     if (s_.obj) {
-      writers_.mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(mesh, comment));
+      writers_.mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(mesh, comment, "", frame_uv_));
       result_.files.push_back("meshes/" + frame_name(k, "obj"));
     }
     if (s_.ply) {
@@ -592,12 +637,31 @@ class AnimationWriter {
 
   void write_glb() {
     const std::string glb =
-        io::glb_bytes(caches_.glb_bodies(), animation_.times_s, glb_materials(s_), s_.glb_every, s_.fps);
+        io::glb_bytes(caches_.glb_bodies(), animation_.times_s, io::glb_materials(look()), s_.glb_every, s_.fps,
+                      export_camera());
     out_.write_text("jellyfish.glb", glb);
     out_.write_text("blender_import.py", kBlenderImport);
     result_.files.insert(result_.files.end(), {"jellyfish.glb", "blender_import.py"});
     result_.glb_bytes = glb.size();
     if (s_.viewer) write_viewer(s_, glb, out_, result_);
+  }
+
+  /// The settings' look, the tissue thickness from the first slice unless set.
+  io::ExportLook look() const {
+    io::ExportLook look = s_.look;
+    if (!(look.tissue_thickness_m > 0.0)) look.tissue_thickness_m = school_.front().front().thickness_m;
+    return look;
+  }
+
+  /// The cameras the frames were rendered with, for the .glb and .usda.
+  io::ExportCamera export_camera() const {
+    io::ExportCamera c;
+    for (const Camera& v : result_.cameras) c.frames.push_back({v.eye, v.target, v.up});
+    if (!result_.cameras.empty()) c.fov_y_deg = result_.cameras.front().fov_y_deg;
+    c.aspect = static_cast<double>(s_.width_px) / s_.height_px;
+    c.width_px = s_.width_px;
+    c.height_px = s_.height_px;
+    return c;
   }
 
   const School& school_;
@@ -615,6 +679,7 @@ class AnimationWriter {
   double geometry_s_ = 0.0, render_s_ = 0.0;
   RgbImage image_;  // reused frame to frame
   std::vector<geometry::FrameGeometry> parts_;
+  std::vector<geometry::TexCoord> frame_uv_;  ///< the merged jellyfish's (per-frame OBJ)
   CacheRecorder caches_;
   bool caching_;
 };

@@ -1,16 +1,28 @@
 // OBJ, PLY and animated glTF binary writers: structure read back and checked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "jellysim/geometry/extrapolation.hpp"
 #include "jellysim/geometry/synthetic_bell.hpp"
+#include "jellysim/geometry/texture_coordinates.hpp"
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/mesh_files.hpp"
 
 namespace jellysim::io {
 namespace {
+
+geometry::GeometrySettings small_settings() {
+  geometry::GeometrySettings s;
+  s.latitude_samples = 21;
+  s.disc_points = 16;
+  s.tentacle_count = 4;
+  s.tentacle_samples = 6;
+  return s;
+}
 
 geometry::Animation small_animation(int frames) {
   std::vector<jellyfish::SliceFrame> slices;
@@ -21,12 +33,7 @@ geometry::Animation small_animation(int frames) {
     spec.aperture_centre_m = {0.0, 0.002 * k};
     slices.push_back(geometry::synthetic_bell(spec));
   }
-  geometry::GeometrySettings s;
-  s.latitude_samples = 21;
-  s.disc_points = 16;
-  s.tentacle_count = 4;
-  s.tentacle_samples = 6;
-  return geometry::build_animation(slices, s);
+  return geometry::build_animation(slices, small_settings());
 }
 
 TEST(MeshFiles, ObjHasEveryVertexNormalAndFace) {
@@ -110,7 +117,7 @@ TEST(MeshFiles, GlbBodiesCarryRootMotionAndQuantizedMorphTargets) {
   using geometry::Vec3;
   const int frames = 4;
   const geometry::Animation anim = small_animation(frames);
-  GlbBody body{"jellyfish_1", anim.frames[0], {}, {}};
+  GlbBody body{"jellyfish_1", anim.frames[0], {}, {}, {}, true};
   for (int k = 0; k < frames; ++k) {
     const Vec3 root{0.0, 0.002 * k, 0.0};
     body.root.push_back(root);
@@ -156,6 +163,171 @@ TEST(MeshFiles, GlbBodiesCarryRootMotionAndQuantizedMorphTargets) {
   const auto& weights = j["accessors"][j["animations"][0]["samplers"][0]["output"].get<int>()];
   EXPECT_EQ(weights["componentType"], 5121);
   EXPECT_EQ(weights["count"], 3 * 2);  // keyframes 0, 2, 3 × two targets
+}
+
+/// Reads accessor `a`'s element `i`, component `c` as stored (float, or normalized integer).
+double accessor_value(const GlbContents& glb, int a, std::size_t i, std::size_t c) {
+  const nlohmann::json& accessor = glb.json["accessors"][static_cast<std::size_t>(a)];
+  const nlohmann::json& view = glb.json["bufferViews"][accessor["bufferView"].get<std::size_t>()];
+  const int type = accessor["componentType"];
+  const std::size_t size = type == 5126 ? 4 : type == 5122 ? 2 : 1;
+  const std::size_t width = accessor["type"] == "SCALAR" ? 1 : accessor["type"] == "VEC2" ? 2 : accessor["type"] == "VEC3" ? 3 : 4;
+  const std::size_t stride = view.contains("byteStride") ? view["byteStride"].get<std::size_t>() : size * width;
+  const char* at = glb.bin.data() + view["byteOffset"].get<std::size_t>() + stride * i + size * c;
+  if (type == 5126) {
+    float f;
+    std::memcpy(&f, at, 4);
+    return f;
+  }
+  if (type == 5122) {
+    std::int16_t q;
+    std::memcpy(&q, at, 2);
+    return q / 32767.0;
+  }
+  return static_cast<std::int8_t>(*at) / 127.0;
+}
+
+/// A small bell (its UVs: geometry::texture_coordinates) translating rigidly at `velocity` (m/s)
+/// relative to a pivot at the origin, at `anim`'s times.
+GlbBody translating_body(const geometry::Animation& anim, geometry::Vec3 velocity) {
+  const geometry::FrameGeometry g = geometry::GeometryBuilder(small_settings(), 0.028).build(geometry::synthetic_bell({}));
+  GlbBody body{"jellyfish_1", g.mesh, {}, {}, geometry::texture_coordinates(g), true};
+  for (double t : anim.times_s) {
+    std::vector<geometry::Vec3> p = g.mesh.positions;
+    for (geometry::Vec3& x : p) x = x + t * velocity;
+    body.positions.push_back(p);
+  }
+  return body;
+}
+
+// Materials (issue 39): the look's colours and opacity, the bell translucent through
+// KHR_materials_transmission, KHR_materials_volume (thickness in the mesh node's units) and
+// KHR_materials_ior, all declared in extensionsUsed.
+TEST(MeshFiles, GlbMaterialsCarryTheLookWithTransmissionVolumeAndIor) {
+  const geometry::Animation anim = small_animation(3);
+  ExportLook look;
+  look.bell_color = {0.1, 0.5, 0.7};
+  look.umbrella_opacity = 0.25;
+  look.transmission = 0.8;
+  look.attenuation_distance_m = 0.02;
+  look.tissue_thickness_m = 0.0015;
+  look.tentacle_color = {0.9, 0.3, 0.2};
+  const GlbContents glb = parse_glb(glb_bytes({translating_body(anim, {0.01, 0, 0})}, anim.times_s, glb_materials(look), 1));
+  const nlohmann::json& j = glb.json;
+  for (const char* e : {"KHR_mesh_quantization", "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"})
+    EXPECT_NE(std::find(j["extensionsUsed"].begin(), j["extensionsUsed"].end(), e), j["extensionsUsed"].end()) << e;
+  const nlohmann::json& bell = j["materials"][0];
+  EXPECT_EQ(bell["name"], "umbrella");
+  EXPECT_EQ(bell["pbrMetallicRoughness"]["baseColorFactor"], nlohmann::json({0.1, 0.5, 0.7, 0.25}));
+  EXPECT_EQ(bell["alphaMode"], "BLEND");
+  EXPECT_FALSE(bell["doubleSided"].get<bool>());  // a volume has an inside
+  EXPECT_DOUBLE_EQ(bell["extensions"]["KHR_materials_transmission"]["transmissionFactor"], 0.8);
+  const nlohmann::json& volume = bell["extensions"]["KHR_materials_volume"];
+  EXPECT_DOUBLE_EQ(volume["attenuationDistance"], 0.02);
+  EXPECT_EQ(volume["attenuationColor"], nlohmann::json({0.1, 0.5, 0.7}));
+  const double scale = j["nodes"][1]["scale"][0];
+  EXPECT_NEAR(volume["thicknessFactor"].get<double>() * scale, 0.0015, 1e-15);
+  EXPECT_DOUBLE_EQ(bell["extensions"]["KHR_materials_ior"]["ior"], 1.34);
+  const nlohmann::json& tentacles = j["materials"][1];
+  EXPECT_EQ(tentacles["pbrMetallicRoughness"]["baseColorFactor"], nlohmann::json({0.9, 0.3, 0.2, 0.75}));
+  EXPECT_FALSE(tentacles.contains("extensions"));
+}
+
+// UVs and velocities (issue 39): TEXCOORD_0 one per primitive vertex in [0, 1] with the seam's
+// vertices duplicated; _VELOCITY in the base and the morph targets decodes, at every kept frame, to
+// the rigid translation's velocity.
+TEST(MeshFiles, GlbHasTexCoordsAndVelocitiesOfATranslatingMesh) {
+  const geometry::Animation anim = small_animation(4);  // frames 0.05 s apart
+  const geometry::Vec3 velocity{0.04, -0.1, 0.02};
+  const GlbBody body = translating_body(anim, velocity);
+  const GlbContents glb = parse_glb(glb_bytes({body}, anim.times_s, {}, 2));
+  const nlohmann::json& mesh = glb.json["meshes"][0];
+  const double vscale = mesh["extras"]["velocity_scale_m_per_s"];
+  EXPECT_NEAR(vscale, 0.1, 1e-9);  // the largest component, frame 0's (the others' differences are ~0)
+  std::size_t vertices = 0;
+  for (const auto& p : mesh["primitives"]) {
+    const int uv = p["attributes"]["TEXCOORD_0"], velocity_attribute = p["attributes"]["_VELOCITY"];
+    const std::size_t count = glb.json["accessors"][static_cast<std::size_t>(uv)]["count"];
+    EXPECT_EQ(count, glb.json["accessors"][p["attributes"]["POSITION"].get<std::size_t>()]["count"].get<std::size_t>());
+    vertices += count;
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t c = 0; c < 2; ++c) {
+        EXPECT_GE(accessor_value(glb, uv, i, c), 0.0);
+        EXPECT_LE(accessor_value(glb, uv, i, c), 1.0);
+      }
+    ASSERT_EQ(p["targets"].size(), 2u);  // frames 2 and 3 (the last)
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double want = c == 0 ? velocity.x : c == 1 ? velocity.y : velocity.z;
+        const double base = vscale * accessor_value(glb, velocity_attribute, i, c);
+        EXPECT_NEAR(base, want, 0.5 * vscale / 127.0 + 1e-9);
+        for (const auto& t : p["targets"])
+          EXPECT_NEAR(base + vscale * accessor_value(glb, t["_VELOCITY"].get<int>(), i, c), want, vscale / 127.0 + 1e-9);
+      }
+  }
+  // The seams were split: a duplicate per umbrella ring (20) and per tube ring (4 tubes × 6 rings).
+  EXPECT_EQ(vertices - body.first.vertex_count(), 20u + 4u * 6u);
+}
+
+// The film camera (issue 39): a perspective camera node whose animated translation and rotation
+// put it at each frame's eye looking at its target.
+TEST(MeshFiles, GlbCameraFollowsTheRenderersCamera) {
+  using geometry::Vec3;
+  const geometry::Animation anim = small_animation(3);
+  ExportCamera camera;
+  camera.fov_y_deg = 30.0;
+  camera.aspect = 2.0;
+  for (int k = 0; k < 3; ++k) camera.frames.push_back({{0.02 * k, 0.05, 0.2}, {0.02 * k, -0.01 * k, 0.0}, {0, 1, 0}});
+  const GlbContents glb = parse_glb(glb_bytes({translating_body(anim, {})}, anim.times_s, {}, 1, 30.0, camera));
+  const nlohmann::json& j = glb.json;
+  const nlohmann::json& perspective = j["cameras"][0]["perspective"];
+  EXPECT_NEAR(perspective["yfov"].get<double>(), 30.0 * std::acos(-1.0) / 180.0, 1e-15);
+  EXPECT_DOUBLE_EQ(perspective["aspectRatio"], 2.0);
+  EXPECT_NEAR(perspective["znear"].get<double>(), 0.02 * std::hypot(0.05, 0.2), 1e-15);
+  const std::size_t node = j["nodes"].size() - 1;
+  EXPECT_EQ(j["nodes"][node]["camera"], 0);
+  EXPECT_NE(std::find(j["scenes"][0]["nodes"].begin(), j["scenes"][0]["nodes"].end(), node), j["scenes"][0]["nodes"].end());
+  int translation = -1, rotation = -1;
+  for (const auto& ch : j["animations"][0]["channels"])
+    if (ch["target"]["node"] == node) {
+      const int output = j["animations"][0]["samplers"][ch["sampler"].get<std::size_t>()]["output"];
+      (ch["target"]["path"] == "translation" ? translation : rotation) = output;
+    }
+  ASSERT_GE(translation, 0);
+  ASSERT_GE(rotation, 0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const CameraFrame& f = camera.frames[k];
+    EXPECT_NEAR(accessor_value(glb, translation, k, 0), f.eye.x, 1e-7);
+    EXPECT_NEAR(accessor_value(glb, translation, k, 2), f.eye.z, 1e-7);
+    const std::array<double, 4> q{accessor_value(glb, rotation, k, 0), accessor_value(glb, rotation, k, 1),
+                                  accessor_value(glb, rotation, k, 2), accessor_value(glb, rotation, k, 3)};
+    // −z rotated by q: 2 (u·v) u + (w² − u·u) v + 2 w (u × v) with v = (0, 0, −1).
+    const Vec3 u{q[0], q[1], q[2]};
+    const Vec3 view = -2.0 * u.z * u + (q[3] * q[3] - geometry::dot(u, u)) * Vec3{0, 0, -1} +
+                      2.0 * q[3] * geometry::cross(u, Vec3{0, 0, -1});
+    EXPECT_LT(geometry::norm(view - geometry::normalized(f.target - f.eye)), 1e-6);
+  }
+}
+
+TEST(MeshFiles, ObjHasTexCoordsWithTheSeamSplitPerCorner) {
+  const geometry::Mesh mesh = small_animation(1).frames[0];
+  std::vector<geometry::TexCoord> uv(mesh.vertex_count());
+  for (std::size_t v = 0; v < uv.size(); ++v) uv[v] = {static_cast<float>(v % 4) / 4.0f, 0.5f};
+  const std::string text = obj_text(mesh, "test", "", uv);
+  std::istringstream in(text);
+  std::string line;
+  std::size_t vt = 0, with_texture = 0, faces = 0;
+  while (std::getline(in, line)) {
+    vt += line.rfind("vt ", 0) == 0;
+    if (line.rfind("f ", 0) == 0) {
+      ++faces;
+      with_texture += line.find("//") == std::string::npos;
+    }
+  }
+  EXPECT_GT(vt, mesh.vertex_count());  // the per-vertex entries and the seam's duplicates
+  EXPECT_EQ(with_texture, faces);
+  EXPECT_NE(text.find("f 1/"), std::string::npos);
+  EXPECT_EQ(text.find("vt 1.1"), std::string::npos);
 }
 
 TEST(MeshFiles, MalformedInputsAreInputErrors) {

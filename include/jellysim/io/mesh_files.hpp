@@ -10,14 +10,19 @@
 #include <nlohmann/json.hpp>
 
 #include "jellysim/geometry/mesh.hpp"
+#include "jellysim/geometry/texture_coordinates.hpp"
+#include "jellysim/io/interchange.hpp"
 
 namespace jellysim::io {
 
 /// Wavefront OBJ: `v` and `vn` lines (shortest round-trip text of the float values), one `g`
 /// group per mesh part with `f a//a b//b c//c` faces (1-based). With `object` given, one object of
 /// that name whose parts are materials (`usemtl`) instead: importers then keep it one mesh with the
-/// vertex order of the file, as a point cache needs.
-std::string obj_text(const geometry::Mesh& mesh, const std::string& comment, const std::string& object = "");
+/// vertex order of the file, as a point cache needs. With `uv` (one per vertex for the first
+/// uv.size() vertices), the parts whose vertices all have one get `vt` lines and `f a/t/a …` faces,
+/// the u seam split per corner (geometry::split_u_seam; no vertex is duplicated).
+std::string obj_text(const geometry::Mesh& mesh, const std::string& comment, const std::string& object = "",
+                     const std::vector<geometry::TexCoord>& uv = {});
 
 /// PLY, binary little endian: float x y z nx ny nz per vertex, faces as uchar-counted uint lists.
 std::string ply_bytes(const geometry::Mesh& mesh, const std::string& comment);
@@ -26,7 +31,15 @@ struct GlbMaterial {
   std::string part;                 ///< mesh part it applies to
   std::array<double, 4> rgba{};     ///< base colour, linear, alpha < 1 → alphaMode BLEND
   double roughness = 0.5;
+  double transmission = 0.0;        ///< > 0: KHR_materials_transmission (and KHR_materials_volume)
+  double attenuation_distance_m = 0.0;  ///< KHR_materials_volume, attenuation colour = rgb (0: none)
+  double thickness_m = 0.0;         ///< KHR_materials_volume thickness (m; in the mesh's units in the file)
+  double ior = 0.0;                 ///< > 0: KHR_materials_ior
 };
+
+/// The materials of the exported look: umbrella (translucent, transmission, volume, ior),
+/// tentacles, obstacles, snow.
+std::vector<GlbMaterial> glb_materials(const ExportLook& look);
 
 /// One animated body of a .glb: its mesh frame by frame relative to its pivot, and where the pivot
 /// is in each frame (the root motion).
@@ -35,6 +48,8 @@ struct GlbBody {
   geometry::Mesh first;              ///< frame 0 (positions relative to the pivot, normals, parts)
   std::vector<std::vector<geometry::Vec3>> positions;  ///< every frame's, relative to the pivot
   std::vector<geometry::Vec3> root;  ///< per frame; empty: the pivot stays at the origin
+  std::vector<geometry::TexCoord> uv;  ///< per vertex (TEXCOORD_0), or empty
+  bool velocities = true;            ///< _VELOCITY in the base and in every morph target
 };
 
 /// glTF 2.0 binary. Per body a node (translation animated by the root motion) with a child node
@@ -49,8 +64,17 @@ struct GlbBody {
 /// a frame's vertex count differs, or a mesh's parts do not use disjoint, contiguous vertex ranges.
 /// `frames_per_second` > 0 is written into asset.extras with the frame count (glTF has no field
 /// for them) for tools that set a scene up from the file (blender_import.py).
+/// Texture coordinates (body.uv): TEXCOORD_0, float VEC2, static (not in the morph targets); the u
+/// seam's vertices are duplicated in the primitive (geometry::split_u_seam). Velocities
+/// (body.velocities, vertex_velocities of the positions relative to the pivot, m/s): the custom
+/// attribute _VELOCITY as normalized signed bytes (VEC3, 4-byte stride), frame 0's in the base and
+/// each kept frame's minus frame 0's in its morph target, so the morphed attribute is the frame's
+/// velocity; metres per second = value × the mesh's extras.velocity_scale_m_per_s.
+/// `camera`, when it has frames: a node "camera" (perspective: yfov, aspectRatio, znear, zfar),
+/// its translation and rotation animated in "swim" unless it stands still.
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
-                      const std::vector<GlbMaterial>& materials, int every = 1, double frames_per_second = 0.0);
+                      const std::vector<GlbMaterial>& materials, int every = 1, double frames_per_second = 0.0,
+                      const ExportCamera& camera = {});
 
 /// One body named "jellyfish" that stays at the origin, every frame a morph target.
 std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials);

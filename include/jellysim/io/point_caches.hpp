@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "jellysim/geometry/mesh.hpp"
+#include "jellysim/geometry/texture_coordinates.hpp"
+#include "jellysim/io/interchange.hpp"
 
 namespace jellysim::io {
 
@@ -31,11 +33,20 @@ struct UsdBody {
   std::vector<geometry::Vec3> root;  ///< per frame
   PointFrames points;           ///< per frame, relative to root
   std::array<double, 3> colour{0.8, 0.9, 1.0};
+  std::vector<geometry::TexCoord> uv;  ///< per vertex (primvars:st, face-varying), or empty
+  bool velocities = true;              ///< `velocities` time samples
 };
 
 /// A .usda stage, Y up, metres, `fps` time codes per second, frames 0 … n−1, all bodies under
-/// /jellysim. Throws InputError for bodies whose frame counts disagree or names that are not
-/// identifiers.
-std::string usda_text(const std::vector<UsdBody>& bodies, double fps, const std::string& comment);
+/// /jellysim. Per mesh: `primvars:st` (face-varying with indices, the u seam split per corner, no
+/// vertex duplicated) when the body has UVs; `velocities` time samples (m/s, relative to the prim's
+/// root: vertex_velocities of the points at t = frame / fps, central differences); its parts'
+/// GeomSubsets bound to UsdPreviewSurface materials under /jellysim/Looks (from `look`: umbrella,
+/// tentacles, obstacles, snow). `camera`, when it has frames: a Camera prim /jellysim/camera
+/// (xformOp:transform, time-sampled unless it stands still; focalLength and apertures giving its
+/// vertical field of view and aspect; clippingRange). Throws InputError for bodies whose frame
+/// counts disagree, names that are not identifiers, or a camera with another frame count.
+std::string usda_text(const std::vector<UsdBody>& bodies, double fps, const std::string& comment,
+                      const ExportLook& look = {}, const ExportCamera& camera = {});
 
 }  // namespace jellysim::io

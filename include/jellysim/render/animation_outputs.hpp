@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/io/interchange.hpp"
 #include "jellysim/io/output.hpp"
 #include "jellysim/jellyfish/slice_frame.hpp"
 #include "jellysim/render/gl_renderer.hpp"
@@ -46,6 +47,9 @@ struct PipelineSettings {
   bool pc2 = true, mdd = false, usda = false;
   /// .glb: a morph target every n-th frame (and the last), played back by linear interpolation.
   int glb_every = 2;
+  /// The materials of the .glb and .usda (the renderer's colours by default; export_look(style)).
+  /// A zero tissue thickness is taken from the first slice (its mesoglea thickness).
+  io::ExportLook look;
   /// Marine snow: the simulation's tracers as specks of this size (m) in the 3D picture.
   bool marine_snow = true;
   double snow_size_m = 0.0003;
@@ -60,6 +64,10 @@ struct PipelineSettings {
 /// in web/, see docs/rendering.md), or, in an installed tree without the sources,
 /// PREFIX/share/jellysim/web/jellyfish-viewer.js beside the running program's PREFIX/bin.
 std::filesystem::path default_viewer_script();
+
+/// The materials of the exported files from the renderer's style: the umbrella's and tentacles'
+/// colours and opacities, the obstacles' and the snow's.
+io::ExportLook export_look(const RenderStyle& style);
 
 /// Called after each frame: (frames done, frames in all).
 using FrameProgress = std::function<void(std::size_t done, std::size_t total)>;
@@ -78,6 +86,9 @@ struct AnimationOutputs {
   /// picture heights.
   double bell_screen_travel = 0.0;
   std::size_t marine_snow_specks = 0;  ///< tracers drawn as marine snow
+  /// The camera each frame was rendered with (also when no pixels were written): the one the
+  /// .glb and .usda carry.
+  std::vector<Camera> cameras;
   /// Key figures for summary.json.
   nlohmann::ordered_json figures() const;
 };
