@@ -1,0 +1,282 @@
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/core/memory.hpp"
+#include "jellysim/fluid/limited_flux.hpp"
+#include "jellysim/fluid3d/fluid_solver_3d.hpp"
+
+namespace jellysim::fluid3d {
+
+namespace {
+
+using fluid::ConvectionScheme;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// ∇·(u q) at face I of component q = vel[c] in flux form: Σ_d (F_d⁺ − F_d⁻)/h_d, each side flux the
+// carrier (u_d averaged to the side) times the limited upwind-biased value of q there.
+template <ConvectionScheme S>
+double convection_at(const Grid3d& g, const Velocity3d& vel, int c, std::size_t I) {
+  const Field3d& q = vel.c[static_cast<std::size_t>(c)];
+  const std::size_t sc = g.stride(c);
+  double sum = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const std::size_t s = g.stride(d);
+    const Field3d& ud = vel.c[static_cast<std::size_t>(d)];
+    const double carrier_plus = d == c ? 0.5 * (q[I] + q[I + s]) : 0.5 * (ud[I + s - sc] + ud[I + s]);
+    const double carrier_minus = d == c ? 0.5 * (q[I - s] + q[I]) : 0.5 * (ud[I - sc] + ud[I]);
+    const double plus = fluid::limited_flux<S>(carrier_plus, q[I - s], q[I], q[I + s], q[I + 2 * s]);
+    const double minus = fluid::limited_flux<S>(carrier_minus, q[I - 2 * s], q[I - s], q[I], q[I + s]);
+    sum += (plus - minus) / g.h(d);
+  }
+  return sum;
+}
+
+// ∇²q at face I (seven points; the ghosts carry the walls).
+double face_laplacian_3d(const Grid3d& g, const Field3d& q, std::size_t I) {
+  double sum = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const std::size_t s = g.stride(d);
+    sum += (q[I + s] - 2.0 * q[I] + q[I - s]) / (g.h(d) * g.h(d));
+  }
+  return sum;
+}
+
+class EulerianSolver3d final : public FluidSolver3d {
+ public:
+  EulerianSolver3d(const Grid3d& g, const FluidSettings3d& s)
+      : settings_(s), state_(g), body_(g), predictor_(g), rhs_(g.padded_size(), 0.0), phi_(g.padded_size(), 0.0),
+        pool_(resolve_threads(s.threads)),
+        pressure_(make_pressure_solver_3d(s.pressure_solver, g, s.boundaries, s.pressure)) {}
+
+  const FlowState3d& state() const override { return state_; }
+  FlowState3d& mutable_state() override { return state_; }
+  Velocity3d& body_acceleration() override { return body_; }
+  PressureReport3d last_pressure_report() const override { return report_; }
+  StepTimings3d last_timings() const override { return timings_; }
+  const FluidSettings3d& settings() const override { return settings_; }
+  double stable_time_step() const override;
+  void step(double dt_s) override;
+
+ private:
+  const Grid3d& grid() const { return state_.grid; }
+  template <class Row>
+  void for_face_rows(int c, Row&& row);
+  template <class Row>
+  void for_cell_rows(Row&& row);
+  void single_step(double dt_s);
+  void predict_convection(double dt_s);
+  void predict_viscosity(double dt_s);
+  void project(double dt_s);
+  double largest_speed(int c) const;
+
+  FluidSettings3d settings_;
+  FlowState3d state_;
+  Velocity3d body_, predictor_;
+  Field3d rhs_, phi_;
+  WorkerPool pool_;
+  std::unique_ptr<PressureSolver3d> pressure_;
+  PressureReport3d report_{};
+  StepTimings3d timings_{};
+};
+
+// Calls row(I0, I1) for the unknown faces of component c, one x-row (fixed j, k) at a time, the
+// rows split between the pool's threads.
+template <class Row>
+void EulerianSolver3d::for_face_rows(int c, Row&& row) {
+  const Grid3d& g = grid();
+  const auto rx = unknown_range(g, settings_.boundaries, c, 0), ry = unknown_range(g, settings_.boundaries, c, 1),
+             rz = unknown_range(g, settings_.boundaries, c, 2);
+  const std::size_t ny = static_cast<std::size_t>(ry[1] - ry[0]), rows = ny * static_cast<std::size_t>(rz[1] - rz[0]);
+  pool_.run(rows, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t r = begin; r < end; ++r) {
+      const int j = ry[0] + static_cast<int>(r % ny), k = rz[0] + static_cast<int>(r / ny);
+      row(g.index(rx[0], j, k), g.index(rx[1], j, k));
+    }
+  });
+}
+
+// Calls row(j, k) for every x-row of interior cells, split between the pool's threads.
+template <class Row>
+void EulerianSolver3d::for_cell_rows(Row&& row) {
+  const Grid3d& g = grid();
+  const std::size_t ny = static_cast<std::size_t>(g.n(1)), rows = ny * static_cast<std::size_t>(g.n(2));
+  pool_.run(rows, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t r = begin; r < end; ++r) row(static_cast<int>(r % ny), static_cast<int>(r / ny));
+  });
+}
+
+double EulerianSolver3d::largest_speed(int c) const {
+  const Grid3d& g = grid();
+  const Field3d& q = state_.velocity.c[static_cast<std::size_t>(c)];
+  double m = settings_.boundaries.largest_wall_speed(c);
+  for (int k = 0; k <= g.n(2); ++k)
+    for (int j = 0; j <= g.n(1); ++j)
+      for (int i = 0; i <= g.n(0); ++i) {
+        const double a = std::abs(q[g.index(i, j, k)]);
+        if (std::isnan(a)) return a;  // makes the step limit NaN: the step refuses it
+        m = std::max(m, a);
+      }
+  return m;
+}
+
+// Δt = τ / (2 Σ_d max|u_d|/h_d + 2ν Σ_d 1/h_d²); 0 for a non-finite velocity.
+double EulerianSolver3d::stable_time_step() const {
+  double rate = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const double h = grid().h(d);
+    rate += 2.0 * largest_speed(d) / h + 2.0 * settings_.viscosity_m2_per_s / (h * h);
+  }
+  if (!std::isfinite(rate)) return 0.0;
+  return rate > 0.0 ? settings_.safety_factor / rate : std::numeric_limits<double>::infinity();
+}
+
+// u* = u + Δt (a − ∇·(u u)) on the unknown faces; the other faces keep u (walls, periodic copies).
+void EulerianSolver3d::predict_convection(double dt_s) {
+  const Grid3d& g = grid();
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t cc = static_cast<std::size_t>(c);
+    const Field3d& q = state_.velocity.c[cc];
+    const Field3d& a = body_.c[cc];
+    Field3d& f = predictor_.c[cc];
+    f = q;
+    const bool koren = settings_.convection == ConvectionScheme::koren;
+    for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
+      for (std::size_t I = I0; I < I1; ++I) {
+        const double conv = koren ? convection_at<ConvectionScheme::koren>(g, state_.velocity, c, I)
+                                  : convection_at<ConvectionScheme::van_leer>(g, state_.velocity, c, I);
+        f[I] = q[I] + dt_s * (a[I] - conv);
+      }
+    });
+  }
+}
+
+// u* += Δt ν∇²u (explicit).
+void EulerianSolver3d::predict_viscosity(double dt_s) {
+  const Grid3d& g = grid();
+  const double nu_dt = settings_.viscosity_m2_per_s * dt_s;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t cc = static_cast<std::size_t>(c);
+    const Field3d& q = state_.velocity.c[cc];
+    Field3d& f = predictor_.c[cc];
+    for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
+      for (std::size_t I = I0; I < I1; ++I) f[I] += nu_dt * face_laplacian_3d(g, q, I);
+    });
+    apply_velocity_boundaries(g, settings_.boundaries, c, f);
+  }
+}
+
+// ∇²φ = ∇·u*/Δt, u = u* − Δt∇φ, p = ρφ.
+void EulerianSolver3d::project(double dt_s) {
+  const Grid3d& g = grid();
+  for_cell_rows([&](int j, int k) {
+    for (int i = 0; i < g.n(0); ++i) rhs_[g.index(i, j, k)] = divergence_at(g, predictor_, i, j, k) / dt_s;
+  });
+  report_ = pressure_->solve(rhs_, phi_);
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t cc = static_cast<std::size_t>(c), s = g.stride(c);
+    const double scale = dt_s / g.h(c);
+    const Field3d& f = predictor_.c[cc];
+    Field3d& q = state_.velocity.c[cc];
+    for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
+      for (std::size_t I = I0; I < I1; ++I) q[I] = f[I] - scale * (phi_[I] - phi_[I - s]);
+    });
+    apply_velocity_boundaries(g, settings_.boundaries, c, q);
+  }
+  const double rho = settings_.density_kg_per_m3;
+  for (std::size_t n = 0; n < phi_.size(); ++n) state_.pressure[n] = rho * phi_[n];
+}
+
+void EulerianSolver3d::single_step(double dt_s) {
+  const auto t0 = Clock::now();
+  apply_velocity_boundaries(grid(), settings_.boundaries, state_.velocity);
+  predict_convection(dt_s);
+  const auto t1 = Clock::now();
+  predict_viscosity(dt_s);
+  const auto t2 = Clock::now();
+  project(dt_s);
+  timings_ = {std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(),
+              seconds_since(t2), seconds_since(t0)};
+  state_.time_s += dt_s;
+}
+
+void EulerianSolver3d::step(double dt_s) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("FluidSolver3d::step: the time step must be positive");
+  double left = dt_s;
+  while (left > 0.0) {
+    const double limit = stable_time_step();
+    if (!(limit > 0.0)) throw std::runtime_error("3D fluid: the velocity is no longer finite");
+    const double pieces = std::ceil(left / limit * (1.0 - 1e-12));
+    const double h = pieces <= 1.0 ? left : left / pieces;
+    single_step(h);
+    left = pieces <= 1.0 ? 0.0 : left - h;
+  }
+}
+
+}  // namespace
+
+double divergence_at(const Grid3d& g, const Velocity3d& vel, int i, int j, int k) {
+  const std::size_t I = g.index(i, j, k);
+  double sum = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const Field3d& q = vel.c[static_cast<std::size_t>(d)];
+    sum += (q[I + g.stride(d)] - q[I]) / g.h(d);
+  }
+  return sum;
+}
+
+double max_divergence(const Grid3d& g, const Velocity3d& vel) {
+  double m = 0.0;
+  for (int k = 0; k < g.n(2); ++k)
+    for (int j = 0; j < g.n(1); ++j)
+      for (int i = 0; i < g.n(0); ++i) m = std::max(m, std::abs(divergence_at(g, vel, i, j, k)));
+  return m;
+}
+
+double kinetic_energy_3d(const Grid3d& g, const Boundaries3d& b, const Velocity3d& vel) {
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const Field3d& q = vel.c[static_cast<std::size_t>(c)];
+    // Each face once: along its own axis all n + 1 faces between walls (the wall faces carry 0),
+    // n across a periodic axis.
+    const int n_own = g.n(c) + (b.axis[static_cast<std::size_t>(c)].periodic ? 0 : 1);
+    for (int k = 0; k < (c == 2 ? n_own : g.n(2)); ++k)
+      for (int j = 0; j < (c == 1 ? n_own : g.n(1)); ++j)
+        for (int i = 0; i < (c == 0 ? n_own : g.n(0)); ++i) sum += q[g.index(i, j, k)] * q[g.index(i, j, k)];
+  }
+  return 0.5 * sum * g.cell_volume();
+}
+
+std::uint64_t estimated_memory_bytes_3d(const Grid3d& g, const FluidSettings3d& s) {
+  // velocity, body acceleration, predictor (3 each), pressure, φ, right-hand side
+  const std::uint64_t padded = static_cast<std::uint64_t>(g.padded_size()) * sizeof(double);
+  const std::uint64_t pressure_solver = s.pressure_solver == "fft"
+                                            ? static_cast<std::uint64_t>(g.cell_count()) * sizeof(double)
+                                            : 3 * padded;
+  return 12 * padded + pressure_solver;
+}
+
+std::unique_ptr<FluidSolver3d> make_fluid_solver_3d(const Grid3d& g, const FluidSettings3d& s) {
+  s.boundaries.validate();
+  if (s.convection == ConvectionScheme::donor_cell)
+    throw std::invalid_argument("3D fluid: convection must be van-leer or koren (the limited second-order schemes)");
+  if (!(s.density_kg_per_m3 > 0.0) || !(s.viscosity_m2_per_s >= 0.0) || !(s.safety_factor > 0.0 && s.safety_factor <= 1.0))
+    throw std::invalid_argument("3D fluid: density > 0, viscosity >= 0 and 0 < safety factor <= 1 are needed");
+  const std::uint64_t bytes = estimated_memory_bytes_3d(g, s), budget = core::memory_budget_bytes();
+  if (bytes > budget) {
+    std::ostringstream msg;
+    msg << "the 3D fluid on " << g.n(0) << " x " << g.n(1) << " x " << g.n(2) << " cells needs about "
+        << static_cast<double>(bytes) / (1024.0 * 1024.0) << " MiB, more than the memory budget ("
+        << static_cast<double>(budget) / (1024.0 * 1024.0) << " MiB, " << core::memory_budget().source << ")";
+    throw InputError(msg.str());
+  }
+  return std::make_unique<EulerianSolver3d>(g, s);
+}
+
+}  // namespace jellysim::fluid3d

@@ -1,0 +1,173 @@
+// The 3D fluid against exact solutions: the Taylor–Green vortex and the Arnold–Beltrami–Childress
+// (ABC) flow decaying in a periodic box (orders over two grids), laminar flow in a square duct
+// against its Fourier series, the lid-driven cube at Re 100 (coarse), and bitwise equality of 1 and
+// 2 threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <numbers>
+#include <random>
+
+#include "jellysim/fluid3d/fluid_solver_3d.hpp"
+
+namespace jellysim::fluid3d {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+using VelocityFunction = std::function<Vec3(double x, double y, double z, double t)>;
+
+// Steps to t_end with the stable step (the last one shortened to land on t_end).
+void advance_to(FluidSolver3d& solver, double t_end) {
+  while (solver.state().time_s < t_end * (1.0 - 1e-12))
+    solver.step(std::min(solver.stable_time_step(), t_end - solver.state().time_s));
+}
+
+void set_velocity(const Grid3d& g, const Boundaries3d& b, Velocity3d& vel, const VelocityFunction& f) {
+  for (int c = 0; c < 3; ++c)
+    set_component(g, b, vel, c, [&](double x, double y, double z) { return f(x, y, z, 0.0)[static_cast<std::size_t>(c)]; });
+}
+
+// Root-mean-square over the faces of |u_h − u_exact(t)|.
+double rms_error(const Grid3d& g, const Velocity3d& vel, const VelocityFunction& exact, double t) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < g.n(2); ++k)
+      for (int j = 0; j < g.n(1); ++j)
+        for (int i = 0; i < g.n(0); ++i) {
+          const Vec3 x = g.position(c, i, j, k);
+          const double e = vel.c[static_cast<std::size_t>(c)][g.index(i, j, k)] - exact(x[0], x[1], x[2], t)[static_cast<std::size_t>(c)];
+          sum += e * e;
+          ++count;
+        }
+  return std::sqrt(sum / static_cast<double>(count));
+}
+
+// The RMS velocity error at t_end of a periodic 2π box with n³ cells started from exact(t = 0).
+double periodic_decay_error(int n, double nu, double t_end, const VelocityFunction& exact) {
+  const Grid3d g({n, n, n}, {2.0 * kPi, 2.0 * kPi, 2.0 * kPi});
+  FluidSettings3d s;
+  s.boundaries = Boundaries3d::periodic_box();
+  s.viscosity_m2_per_s = nu;
+  s.density_kg_per_m3 = 1.0;
+  auto solver = make_fluid_solver_3d(g, s);
+  set_velocity(g, s.boundaries, solver->mutable_state().velocity, exact);
+  advance_to(*solver, t_end);
+  return rms_error(g, solver->state().velocity, exact, t_end);
+}
+
+// u = sin x cos y, v = −cos x sin y, w = 0, decaying as e^{−2νt}.
+Vec3 taylor_green(double x, double y, double, double t, double nu) {
+  const double a = std::exp(-2.0 * nu * t);
+  return {a * std::sin(x) * std::cos(y), -a * std::cos(x) * std::sin(y), 0.0};
+}
+
+// ABC flow (A = B = C = 1): ∇×u = u, so (u·∇)u = ∇|u|²/2 is absorbed by the pressure and the flow
+// decays as e^{−νt}; all three components depend on all three coordinates.
+Vec3 abc_flow(double x, double y, double z, double t, double nu) {
+  const double a = std::exp(-nu * t);
+  return {a * (std::sin(z) + std::cos(y)), a * (std::sin(x) + std::cos(z)), a * (std::sin(y) + std::cos(x))};
+}
+
+constexpr double kNu = 0.1;
+
+struct DecayOrder {
+  double e16, e32, order;
+};
+
+// The RMS errors at t_end on 16³ and 32³ and the observed order log2(e16/e32).
+DecayOrder measured_decay_order(const char* name, double t_end, const VelocityFunction& exact) {
+  const double e16 = periodic_decay_error(16, kNu, t_end, exact), e32 = periodic_decay_error(32, kNu, t_end, exact);
+  const DecayOrder d{e16, e32, std::log2(e16 / e32)};
+  std::printf("  %s, t = %.1f: RMS error 16^3 %.3e, 32^3 %.3e, order %.3f\n", name, t_end, d.e16, d.e32, d.order);
+  return d;
+}
+
+TEST(TaylorGreen3d, DecaysAtSecondOrderInAPeriodicBox) {
+  const DecayOrder d = measured_decay_order("Taylor-Green", 1.0, [](double x, double y, double z, double t) {
+    return taylor_green(x, y, z, t, kNu);
+  });
+  EXPECT_NEAR(d.e16, 1.80e-3, 0.03e-3);  // measured 1.803e-3
+  EXPECT_NEAR(d.e32, 2.00e-4, 0.03e-4);  // measured 2.004e-4
+  EXPECT_GE(d.order, 1.8);
+  EXPECT_NEAR(d.order, 3.17, 0.03);  // measured 3.169 (Koren's third-order face values, Δt ∝ Δx² here)
+}
+
+TEST(Beltrami3d, AbcFlowDecaysAtSecondOrderInAPeriodicBox) {
+  const DecayOrder d = measured_decay_order("ABC flow", 0.5, [](double x, double y, double z, double t) {
+    return abc_flow(x, y, z, t, kNu);
+  });
+  EXPECT_NEAR(d.e32, 2.40e-3, 0.03e-3);  // measured 2.401e-3
+  EXPECT_GE(d.order, 1.8);
+  EXPECT_NEAR(d.order, 2.49, 0.03);  // measured 2.491
+}
+
+// Fully developed flow in a square duct of side 2a driven by the acceleration G along x (White,
+// Viscous Fluid Flow, eq. 3-48, with −dp/dx/μ = G/ν; y', z' from the duct's axis):
+// u = (16 a² G/(ν π³)) Σ_{n odd} (−1)^{(n−1)/2} [1 − cosh(nπz'/2a)/cosh(nπ/2)] cos(nπy'/2a) / n³.
+double duct_velocity(double y, double z, double a, double G, double nu) {
+  double sum = 0.0;
+  for (int n = 1; n < 200; n += 2) {
+    const double sign = ((n - 1) / 2) % 2 == 0 ? 1.0 : -1.0;
+    const double ratio = std::cosh(n * kPi * z / (2.0 * a)) / std::cosh(n * kPi / 2.0);
+    sum += sign * (1.0 - ratio) * std::cos(n * kPi * y / (2.0 * a)) / (n * n * n);
+  }
+  return 16.0 * a * a * G / (nu * kPi * kPi * kPi) * sum;
+}
+
+// Max |u − series| / max u in a unit duct with n × n cells across and 4 along (periodic) x.
+double duct_error(int n) {
+  const double side = 1.0, a = 0.5, G = 1.0, nu = 1.0;
+  const Grid3d g({4, n, n}, {4.0 * side / n, side, side});
+  FluidSettings3d s;
+  s.boundaries = Boundaries3d::duct(0);
+  s.viscosity_m2_per_s = nu;
+  s.density_kg_per_m3 = 1.0;
+  auto solver = make_fluid_solver_3d(g, s);
+  Velocity3d& vel = solver->mutable_state().velocity;
+  const auto series = [&](double, double y, double z) { return duct_velocity(y - a, z - a, a, G, nu); };
+  set_component(g, s.boundaries, vel, 0, series);
+  for (double& f : solver->body_acceleration().c[0]) f = G;
+  advance_to(*solver, 0.4);  // the slowest mode decays as e^{−2π²νt/side²}: e^{−7.9}
+  double worst = 0.0, peak = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j) {
+      const Vec3 x = g.position(0, 1, j, k);
+      const double exact = series(x[0], x[1], x[2]);
+      worst = std::max(worst, std::abs(vel.c[0][g.index(1, j, k)] - exact));
+      peak = std::max(peak, exact);
+    }
+  return worst / peak;
+}
+
+TEST(SquareDuct3d, PressureDrivenFlowMatchesTheFourierSeries) {
+  const double e8 = duct_error(8), e16 = duct_error(16);
+  std::printf("  square duct: max |u - series| / u_max: 8^2 %.3e, 16^2 %.3e, order %.3f\n", e8, e16, std::log2(e8 / e16));
+  EXPECT_NEAR(e16, 6.30e-3, 0.05e-3);  // measured 6.298e-3
+  EXPECT_NEAR(std::log2(e8 / e16), 1.93, 0.03);  // measured 1.931
+}
+
+// A random flow in the lid-driven cube, five steps on 1 and on 2 threads: the same bits.
+TEST(Fluid3dThreads, OneAndTwoThreadsGiveTheSameBits) {
+  const Grid3d g({12, 16, 14}, {1.0, 1.0, 1.0});
+  std::vector<Velocity3d> results;
+  for (int threads : {1, 2}) {
+    FluidSettings3d s;
+    s.boundaries = Boundaries3d::lid_driven_cavity(1.0);
+    s.viscosity_m2_per_s = 0.01;
+    s.threads = threads;
+    auto solver = make_fluid_solver_3d(g, s);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+    for (int c = 0; c < 3; ++c)
+      set_component(g, s.boundaries, solver->mutable_state().velocity, c, [&](double, double, double) { return uniform(rng); });
+    for (int step = 0; step < 5; ++step) solver->step(solver->stable_time_step());
+    results.push_back(solver->state().velocity);
+  }
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(results[0].c[static_cast<std::size_t>(c)], results[1].c[static_cast<std::size_t>(c)]);
+}
+
+}  // namespace
+}  // namespace jellysim::fluid3d
