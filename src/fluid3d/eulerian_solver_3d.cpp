@@ -233,9 +233,7 @@ double divergence_at(const Grid3d& g, const Velocity3d& vel, int i, int j, int k
 
 double max_divergence(const Grid3d& g, const Velocity3d& vel) {
   double m = 0.0;
-  for (int k = 0; k < g.n(2); ++k)
-    for (int j = 0; j < g.n(1); ++j)
-      for (int i = 0; i < g.n(0); ++i) m = std::max(m, std::abs(divergence_at(g, vel, i, j, k)));
+  for_each_interior_cell(g, [&](std::size_t, int i, int j, int k) { m = std::max(m, std::abs(divergence_at(g, vel, i, j, k))); });
   return m;
 }
 
@@ -256,9 +254,11 @@ double kinetic_energy_3d(const Grid3d& g, const Boundaries3d& b, const Velocity3
 std::uint64_t estimated_memory_bytes_3d(const Grid3d& g, const FluidSettings3d& s) {
   // velocity, body acceleration, predictor (3 each), pressure, φ, right-hand side
   const std::uint64_t padded = static_cast<std::uint64_t>(g.padded_size()) * sizeof(double);
+  // FFT: one compact buffer; CG: three padded fields; multigrid: three per level, the levels
+  // together under 8/7 of the finest, and the coarsest level's CG (bounded by the same).
   const std::uint64_t pressure_solver = s.pressure_solver == "fft"
                                             ? static_cast<std::uint64_t>(g.cell_count()) * sizeof(double)
-                                            : 3 * padded;
+                                            : (s.pressure_solver == "cg" ? 3 * padded : 6 * padded);
   return 12 * padded + pressure_solver;
 }
 

@@ -82,15 +82,11 @@ class FftPressure3d final : public PressureSolver3d {
   }
   void copy_in(const Field3d& b) {
     std::size_t n = 0;
-    for (int k = 0; k < g_.n(2); ++k)
-      for (int j = 0; j < g_.n(1); ++j)
-        for (int i = 0; i < g_.n(0); ++i) data_[n++] = b[g_.index(i, j, k)];
+    for_each_interior_cell(g_, [&](std::size_t I, int, int, int) { data_[n++] = b[I]; });
   }
   void copy_out(Field3d& p) const {
     std::size_t n = 0;
-    for (int k = 0; k < g_.n(2); ++k)
-      for (int j = 0; j < g_.n(1); ++j)
-        for (int i = 0; i < g_.n(0); ++i) p[g_.index(i, j, k)] = data_[n++];
+    for_each_interior_cell(g_, [&](std::size_t I, int, int, int) { p[I] = data_[n++]; });
   }
   // p̂ = b̂ / (λx + λy + λz), scaled for the unnormalised round trip; the null mode (the mean, whose
   // eigenvalue is 0) is set to zero, which removes b's mean and makes p mean-free.

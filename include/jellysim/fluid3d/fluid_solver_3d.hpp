@@ -28,7 +28,7 @@ struct FluidSettings3d {
   double viscosity_m2_per_s = 1e-6;  ///< kinematic viscosity ν
   Boundaries3d boundaries = Boundaries3d::closed_box();
   fluid::ConvectionScheme convection = fluid::ConvectionScheme::koren;  ///< van-leer or koren
-  std::string pressure_solver = "fft";                                   ///< "fft" or "cg"
+  std::string pressure_solver = "fft";                                   ///< "fft", "multigrid" or "cg"
   PressureSettings3d pressure{};
   double safety_factor = 0.5;  ///< τ in the time-step limit
   int threads = 1;             ///< pool threads (0: all cores, resolve_threads)

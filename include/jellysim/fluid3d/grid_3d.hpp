@@ -47,6 +47,14 @@ class Grid3d {
   std::array<std::size_t, 3> padded_, stride_;
 };
 
+/// Calls f(index, i, j, k) for every interior cell of g, in index order (x fastest).
+template <class F>
+void for_each_interior_cell(const Grid3d& g, F&& f) {
+  for (int k = 0; k < g.n(2); ++k)
+    for (int j = 0; j < g.n(1); ++j)
+      for (int i = 0; i < g.n(0); ++i) f(g.index(i, j, k), i, j, k);
+}
+
 /// One scalar sample per padded index.
 using Field3d = std::vector<double>;
 

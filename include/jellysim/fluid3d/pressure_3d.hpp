@@ -7,8 +7,12 @@
 //    (R2HC/HC2R) across periodic axes; eigenvalues λ_d(k) = −(4/h_d²) sin²(πk/(2n_d)) (walls) and
 //    −(4/h_d²) sin²(πk/n_d) (periodic; k the frequency of a half-complex slot). Plans use
 //    FFTW_ESTIMATE, so every run takes the same code path (deterministic bytes).
-//  * "cg": conjugate gradients on −∇², to a relative max-norm residual (a reference for general
-//    cases and for the tests; serial, fixed summation order).
+//  * "multigrid": geometric multigrid V(2,2) cycles, red-black Gauss–Seidel, eight-cell-average
+//    restriction, trilinear cell-centred prolongation, CG on the coarsest grid (reached when a
+//    count is odd or below 4, or at ≤ 64 cells); to a relative max-norm residual. For general cases
+//    (a later immersed boundary with non-uniform coefficients); serial.
+//  * "cg": conjugate gradients on −∇², to a relative max-norm residual (a reference for the tests
+//    and the coarsest multigrid level; serial, fixed summation order).
 #include <memory>
 #include <string>
 #include <string_view>
@@ -40,7 +44,7 @@ class PressureSolver3d {
   virtual bool uses_initial_guess() const { return true; }
 };
 
-/// "fft", "cg".
+/// "fft", "multigrid", "cg".
 const std::vector<std::string>& pressure_solver_3d_names();
 /// Throws std::invalid_argument for other names.
 std::unique_ptr<PressureSolver3d> make_pressure_solver_3d(std::string_view name, const Grid3d& g, const Boundaries3d& b,
