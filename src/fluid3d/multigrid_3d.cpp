@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace jellysim::fluid3d {
 
@@ -122,12 +123,17 @@ PressureReport3d MultigridPressure3d::solve(const Field3d& b, Field3d& p) {
     bmax = std::max(bmax, std::abs(top.rhs[I]));
   });
   PressureReport3d report;
-  for (;; ++report.iterations) {
+  for (double previous = std::numeric_limits<double>::infinity();; ++report.iterations) {
     apply_pressure_boundaries(top.g, b_, top.p);
     compute_residual(top);
     report.residual_max = 0.0;
     for_each_interior_cell(top.g, [&](std::size_t I, int, int, int) { report.residual_max = std::max(report.residual_max, std::abs(top.r[I])); });
-    if (report.residual_max <= s_.relative_tolerance * bmax || report.iterations >= s_.max_iterations) break;
+    // Stops at the tolerance, at max_iterations, or where round-off stalls the cycles (a tolerance
+    // below what the arithmetic can reach): less than a tenth gained by the last cycle.
+    if (report.residual_max <= s_.relative_tolerance * bmax || report.iterations >= s_.max_iterations ||
+        report.residual_max > 0.9 * previous)
+      break;
+    previous = report.residual_max;
     v_cycle(0);
   }
   const double pmean = interior_mean(top.g, top.p);
