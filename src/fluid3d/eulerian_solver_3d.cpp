@@ -19,23 +19,41 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// ∇·(u q) at face I of component q = vel[c] in flux form: Σ_d (F_d⁺ − F_d⁻)/h_d, each side flux the
-// carrier (u_d averaged to the side) times the limited upwind-biased value of q there.
-template <ConvectionScheme S>
-double convection_at(const Grid3d& g, const Velocity3d& vel, int c, std::size_t I) {
-  const Field3d& q = vel.c[static_cast<std::size_t>(c)];
-  const std::size_t sc = g.stride(c);
-  double sum = 0.0;
-  for (int d = 0; d < 3; ++d) {
-    const std::size_t s = g.stride(d);
-    const Field3d& ud = vel.c[static_cast<std::size_t>(d)];
-    const double carrier_plus = d == c ? 0.5 * (q[I] + q[I + s]) : 0.5 * (ud[I + s - sc] + ud[I + s]);
-    const double carrier_minus = d == c ? 0.5 * (q[I - s] + q[I]) : 0.5 * (ud[I - sc] + ud[I]);
-    const double plus = fluid::limited_flux<S>(carrier_plus, q[I - s], q[I], q[I + s], q[I + 2 * s]);
-    const double minus = fluid::limited_flux<S>(carrier_minus, q[I - 2 * s], q[I - s], q[I], q[I + s]);
-    sum += (plus - minus) / g.h(d);
+// The two side fluxes along axis D of component C's control volume at face I: the carrier (u_D
+// averaged to the side) times the limited upwind-biased value of q = u_C there; returns
+// (F⁺ − F⁻)/h_D.
+template <ConvectionScheme S, int C, int D>
+inline double flux_difference(const Grid3d& g, const Velocity3d& vel, std::size_t I) {
+  const Field3d& q = vel.c[C];
+  const std::size_t s = g.stride(D), sc = g.stride(C);
+  const Field3d& ud = vel.c[D];
+  const double carrier_plus = C == D ? 0.5 * (q[I] + q[I + s]) : 0.5 * (ud[I + s - sc] + ud[I + s]);
+  const double carrier_minus = C == D ? 0.5 * (q[I - s] + q[I]) : 0.5 * (ud[I - sc] + ud[I]);
+  const double plus = fluid::limited_flux<S>(carrier_plus, q[I - s], q[I], q[I + s], q[I + 2 * s]);
+  const double minus = fluid::limited_flux<S>(carrier_minus, q[I - 2 * s], q[I - s], q[I], q[I + s]);
+  return (plus - minus) / g.h(D);
+}
+
+// u* = u + Δt (a − ∇·(u u)) on faces [I0, I1) of component C, ∇·(u u) in flux form (the sum over
+// the axes in the order x, y, z).
+template <ConvectionScheme S, int C>
+void convection_row(const Grid3d& g, const Velocity3d& vel, const Field3d& a, Field3d& f, std::size_t I0,
+                    std::size_t I1, double dt_s) {
+  const Field3d& q = vel.c[C];
+  for (std::size_t I = I0; I < I1; ++I) {
+    double conv = flux_difference<S, C, 0>(g, vel, I);
+    conv += flux_difference<S, C, 1>(g, vel, I);
+    conv += flux_difference<S, C, 2>(g, vel, I);
+    f[I] = q[I] + dt_s * (a[I] - conv);
   }
-  return sum;
+}
+
+template <ConvectionScheme S>
+void convection_row(int c, const Grid3d& g, const Velocity3d& vel, const Field3d& a, Field3d& f, std::size_t I0,
+                    std::size_t I1, double dt_s) {
+  if (c == 0) convection_row<S, 0>(g, vel, a, f, I0, I1, dt_s);
+  if (c == 1) convection_row<S, 1>(g, vel, a, f, I0, I1, dt_s);
+  if (c == 2) convection_row<S, 2>(g, vel, a, f, I0, I1, dt_s);
 }
 
 // ∇²q at face I (seven points; the ghosts carry the walls).
@@ -148,11 +166,10 @@ void EulerianSolver3d::predict_convection(double dt_s) {
     f = q;
     const bool koren = settings_.convection == ConvectionScheme::koren;
     for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
-      for (std::size_t I = I0; I < I1; ++I) {
-        const double conv = koren ? convection_at<ConvectionScheme::koren>(g, state_.velocity, c, I)
-                                  : convection_at<ConvectionScheme::van_leer>(g, state_.velocity, c, I);
-        f[I] = q[I] + dt_s * (a[I] - conv);
-      }
+      if (koren)
+        convection_row<ConvectionScheme::koren>(c, g, state_.velocity, a, f, I0, I1, dt_s);
+      else
+        convection_row<ConvectionScheme::van_leer>(c, g, state_.velocity, a, f, I0, I1, dt_s);
     });
   }
 }
