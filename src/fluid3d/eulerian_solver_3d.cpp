@@ -71,7 +71,7 @@ class EulerianSolver3d final : public FluidSolver3d {
   EulerianSolver3d(const Grid3d& g, const FluidSettings3d& s)
       : settings_(s), state_(g), body_(g), predictor_(g), rhs_(g.padded_size(), 0.0), phi_(g.padded_size(), 0.0),
         pool_(resolve_threads(s.threads)),
-        pressure_(make_pressure_solver_3d(s.pressure_solver, g, s.boundaries, s.pressure)) {}
+        pressure_(make_pressure_solver_3d(s.pressure_solver, g, s.boundaries, s.pressure, &pool_)) {}
 
   const FlowState3d& state() const override { return state_; }
   FlowState3d& mutable_state() override { return state_; }

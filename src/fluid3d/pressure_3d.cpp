@@ -93,8 +93,8 @@ const std::vector<std::string>& pressure_solver_3d_names() {
 }
 
 std::unique_ptr<PressureSolver3d> make_pressure_solver_3d(std::string_view name, const Grid3d& g, const Boundaries3d& b,
-                                                          const PressureSettings3d& settings) {
-  if (name == "fft") return make_fft_pressure_3d(g, b);
+                                                          const PressureSettings3d& settings, WorkerPool* pool) {
+  if (name == "fft") return make_fft_pressure_3d(g, b, pool);
   if (name == "multigrid") return make_multigrid_pressure_3d(g, b, settings);
   if (name == "cg") return std::make_unique<CgPressure3d>(g, b, settings);
   throw std::invalid_argument("unknown 3D pressure solver '" + std::string(name) + "' (fft, multigrid, cg)");

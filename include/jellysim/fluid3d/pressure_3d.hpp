@@ -6,7 +6,9 @@
 //    plan for the 3D array): DCT-II/DCT-III (REDFT10/REDFT01) between walls, the real DFT
 //    (R2HC/HC2R) across periodic axes; eigenvalues λ_d(k) = −(4/h_d²) sin²(πk/(2n_d)) (walls) and
 //    −(4/h_d²) sin²(πk/n_d) (periodic; k the frequency of a half-complex slot). Plans use
-//    FFTW_ESTIMATE, so every run takes the same code path (deterministic bytes).
+//    FFTW_ESTIMATE, so every run takes the same code path (deterministic bytes). The 2D (x, y)
+//    transforms of slabs of z-planes and the z transforms of bands of y-rows are fixed chunks (8 or
+//    fewer), run as the pool's tasks when one is given.
 //  * "multigrid": geometric multigrid V(2,2) cycles, red-black Gauss–Seidel, eight-cell-average
 //    restriction, trilinear cell-centred prolongation, CG on the coarsest grid (reached when a
 //    count is odd or below 4, or at ≤ 64 cells); to a relative max-norm residual. For general cases
@@ -18,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "jellysim/core/parallel.hpp"
 #include "jellysim/fluid3d/boundary_3d.hpp"
 #include "jellysim/fluid3d/grid_3d.hpp"
 
@@ -46,9 +49,11 @@ class PressureSolver3d {
 
 /// "fft", "multigrid", "cg".
 const std::vector<std::string>& pressure_solver_3d_names();
-/// Throws std::invalid_argument for other names.
+/// Throws std::invalid_argument for other names. `pool` (optional, kept by the solver) runs the FFT's
+/// transforms: fixed chunks of planes and lines as its tasks, the same bits on any thread count.
 std::unique_ptr<PressureSolver3d> make_pressure_solver_3d(std::string_view name, const Grid3d& g, const Boundaries3d& b,
-                                                          const PressureSettings3d& settings = {});
+                                                          const PressureSettings3d& settings = {},
+                                                          WorkerPool* pool = nullptr);
 
 /// The seven-point Laplacian of a cell-centred field p at interior cell (i, j, k); p's ghosts
 /// must be filled (apply_pressure_boundaries).
