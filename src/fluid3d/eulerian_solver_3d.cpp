@@ -19,41 +19,33 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// The two side fluxes along axis D of component C's control volume at face I: the carrier (u_D
-// averaged to the side) times the limited upwind-biased value of q = u_C there; returns
-// (F⁺ − F⁻)/h_D.
+// The flux through the low side (along axis D) of component C's control volume at face I: the
+// carrier (u_D averaged to that side) times the limited upwind-biased value of q = u_C there. The
+// high side of face I is the low side of face I + stride(D), so each side flux is computed once.
 template <ConvectionScheme S, int C, int D>
-inline double flux_difference(const Grid3d& g, const Velocity3d& vel, std::size_t I) {
+void low_side_flux_row(const Grid3d& g, const Velocity3d& vel, Field3d& flux, std::size_t I0, std::size_t I1) {
   const Field3d& q = vel.c[C];
-  const std::size_t s = g.stride(D), sc = g.stride(C);
   const Field3d& ud = vel.c[D];
-  const double carrier_plus = C == D ? 0.5 * (q[I] + q[I + s]) : 0.5 * (ud[I + s - sc] + ud[I + s]);
-  const double carrier_minus = C == D ? 0.5 * (q[I - s] + q[I]) : 0.5 * (ud[I - sc] + ud[I]);
-  const double plus = fluid::limited_flux<S>(carrier_plus, q[I - s], q[I], q[I + s], q[I + 2 * s]);
-  const double minus = fluid::limited_flux<S>(carrier_minus, q[I - 2 * s], q[I - s], q[I], q[I + s]);
-  return (plus - minus) / g.h(D);
-}
-
-// u* = u + Δt (a − ∇·(u u)) on faces [I0, I1) of component C, ∇·(u u) in flux form (the sum over
-// the axes in the order x, y, z).
-template <ConvectionScheme S, int C>
-void convection_row(const Grid3d& g, const Velocity3d& vel, const Field3d& a, Field3d& f, std::size_t I0,
-                    std::size_t I1, double dt_s) {
-  const Field3d& q = vel.c[C];
+  const std::size_t s = g.stride(D), sc = g.stride(C);
   for (std::size_t I = I0; I < I1; ++I) {
-    double conv = flux_difference<S, C, 0>(g, vel, I);
-    conv += flux_difference<S, C, 1>(g, vel, I);
-    conv += flux_difference<S, C, 2>(g, vel, I);
-    f[I] = q[I] + dt_s * (a[I] - conv);
+    const double carrier = C == D ? 0.5 * (q[I - s] + q[I]) : 0.5 * (ud[I - sc] + ud[I]);
+    flux[I] = fluid::limited_flux<S>(carrier, q[I - 2 * s], q[I - s], q[I], q[I + s]);
   }
 }
 
+template <ConvectionScheme S, int C>
+void low_side_flux_row(int d, const Grid3d& g, const Velocity3d& vel, Field3d& flux, std::size_t I0, std::size_t I1) {
+  if (d == 0) low_side_flux_row<S, C, 0>(g, vel, flux, I0, I1);
+  if (d == 1) low_side_flux_row<S, C, 1>(g, vel, flux, I0, I1);
+  if (d == 2) low_side_flux_row<S, C, 2>(g, vel, flux, I0, I1);
+}
+
+// The side fluxes along axis d of component c (fluid::ConvectionScheme S) on faces [I0, I1).
 template <ConvectionScheme S>
-void convection_row(int c, const Grid3d& g, const Velocity3d& vel, const Field3d& a, Field3d& f, std::size_t I0,
-                    std::size_t I1, double dt_s) {
-  if (c == 0) convection_row<S, 0>(g, vel, a, f, I0, I1, dt_s);
-  if (c == 1) convection_row<S, 1>(g, vel, a, f, I0, I1, dt_s);
-  if (c == 2) convection_row<S, 2>(g, vel, a, f, I0, I1, dt_s);
+void low_side_flux_row(int c, int d, const Grid3d& g, const Velocity3d& vel, Field3d& flux, std::size_t I0, std::size_t I1) {
+  if (c == 0) low_side_flux_row<S, 0>(d, g, vel, flux, I0, I1);
+  if (c == 1) low_side_flux_row<S, 1>(d, g, vel, flux, I0, I1);
+  if (c == 2) low_side_flux_row<S, 2>(d, g, vel, flux, I0, I1);
 }
 
 // ∇²q at face I (seven points; the ghosts carry the walls).
@@ -69,7 +61,9 @@ double face_laplacian_3d(const Grid3d& g, const Field3d& q, std::size_t I) {
 class EulerianSolver3d final : public FluidSolver3d {
  public:
   EulerianSolver3d(const Grid3d& g, const FluidSettings3d& s)
-      : settings_(s), state_(g), body_(g), predictor_(g), rhs_(g.padded_size(), 0.0), phi_(g.padded_size(), 0.0),
+      : settings_(s), state_(g), body_(g), predictor_(g),
+        fluxes_{Field3d(g.padded_size(), 0.0), Field3d(g.padded_size(), 0.0), Field3d(g.padded_size(), 0.0)},
+        rhs_(g.padded_size(), 0.0), phi_(g.padded_size(), 0.0),
         pool_(resolve_threads(s.threads)),
         pressure_(make_pressure_solver_3d(s.pressure_solver, g, s.boundaries, s.pressure, &pool_)) {}
 
@@ -85,7 +79,7 @@ class EulerianSolver3d final : public FluidSolver3d {
  private:
   const Grid3d& grid() const { return state_.grid; }
   template <class Row>
-  void for_face_rows(int c, Row&& row);
+  void for_face_rows(int c, Row&& row, int extend_axis = -1);
   template <class Row>
   void for_cell_rows(Row&& row);
   void single_step(double dt_s);
@@ -97,6 +91,7 @@ class EulerianSolver3d final : public FluidSolver3d {
   FluidSettings3d settings_;
   FlowState3d state_;
   Velocity3d body_, predictor_;
+  std::array<Field3d, 3> fluxes_;  ///< convective side fluxes along x, y, z (scratch)
   Field3d rhs_, phi_;
   WorkerPool pool_;
   std::unique_ptr<PressureSolver3d> pressure_;
@@ -105,12 +100,13 @@ class EulerianSolver3d final : public FluidSolver3d {
 };
 
 // Calls row(I0, I1) for the unknown faces of component c, one x-row (fixed j, k) at a time, the
-// rows split between the pool's threads.
+// rows split between the pool's threads; with extend_axis, one face further along that axis.
 template <class Row>
-void EulerianSolver3d::for_face_rows(int c, Row&& row) {
+void EulerianSolver3d::for_face_rows(int c, Row&& row, int extend_axis) {
   const Grid3d& g = grid();
-  const auto rx = unknown_range(g, settings_.boundaries, c, 0), ry = unknown_range(g, settings_.boundaries, c, 1),
-             rz = unknown_range(g, settings_.boundaries, c, 2);
+  auto rx = unknown_range(g, settings_.boundaries, c, 0), ry = unknown_range(g, settings_.boundaries, c, 1),
+       rz = unknown_range(g, settings_.boundaries, c, 2);
+  if (extend_axis >= 0) ++(extend_axis == 0 ? rx : extend_axis == 1 ? ry : rz)[1];
   const std::size_t ny = static_cast<std::size_t>(ry[1] - ry[0]), rows = ny * static_cast<std::size_t>(rz[1] - rz[0]);
   pool_.run(rows, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t r = begin; r < end; ++r) {
@@ -155,21 +151,36 @@ double EulerianSolver3d::stable_time_step() const {
   return rate > 0.0 ? settings_.safety_factor / rate : std::numeric_limits<double>::infinity();
 }
 
-// u* = u + Δt (a − ∇·(u u)) on the unknown faces; the other faces keep u (walls, periodic copies).
+// u* = u + Δt (a − ∇·(u u)) on the unknown faces, ∇·(u u) = Σ_d (F_d⁺ − F_d⁻)/h_d in flux form
+// (summed x, y, z); the other faces keep u (walls, periodic copies).
 void EulerianSolver3d::predict_convection(double dt_s) {
   const Grid3d& g = grid();
+  const bool koren = settings_.convection == ConvectionScheme::koren;
   for (int c = 0; c < 3; ++c) {
     const std::size_t cc = static_cast<std::size_t>(c);
+    for (int d = 0; d < 3; ++d) {
+      Field3d& flux = fluxes_[static_cast<std::size_t>(d)];
+      for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
+        if (koren)
+          low_side_flux_row<ConvectionScheme::koren>(c, d, g, state_.velocity, flux, I0, I1);
+        else
+          low_side_flux_row<ConvectionScheme::van_leer>(c, d, g, state_.velocity, flux, I0, I1);
+      }, d);
+    }
     const Field3d& q = state_.velocity.c[cc];
     const Field3d& a = body_.c[cc];
     Field3d& f = predictor_.c[cc];
     f = q;
-    const bool koren = settings_.convection == ConvectionScheme::koren;
+    const std::size_t sy = g.stride(1), sz = g.stride(2);
+    const double ix = 1.0 / g.h(0), iy = 1.0 / g.h(1), iz = 1.0 / g.h(2);
+    const Field3d &fx = fluxes_[0], &fy = fluxes_[1], &fz = fluxes_[2];
     for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
-      if (koren)
-        convection_row<ConvectionScheme::koren>(c, g, state_.velocity, a, f, I0, I1, dt_s);
-      else
-        convection_row<ConvectionScheme::van_leer>(c, g, state_.velocity, a, f, I0, I1, dt_s);
+      for (std::size_t I = I0; I < I1; ++I) {
+        double conv = (fx[I + 1] - fx[I]) * ix;
+        conv += (fy[I + sy] - fy[I]) * iy;
+        conv += (fz[I + sz] - fz[I]) * iz;
+        f[I] = q[I] + dt_s * (a[I] - conv);
+      }
     });
   }
 }
@@ -269,14 +280,14 @@ double kinetic_energy_3d(const Grid3d& g, const Boundaries3d& b, const Velocity3
 }
 
 std::uint64_t estimated_memory_bytes_3d(const Grid3d& g, const FluidSettings3d& s) {
-  // velocity, body acceleration, predictor (3 each), pressure, φ, right-hand side
+  // velocity, body acceleration, predictor, convective fluxes (3 each), pressure, φ, right-hand side
   const std::uint64_t padded = static_cast<std::uint64_t>(g.padded_size()) * sizeof(double);
   // FFT: one compact buffer; CG: three padded fields; multigrid: three per level, the levels
   // together under 8/7 of the finest, and the coarsest level's CG (bounded by the same).
   const std::uint64_t pressure_solver = s.pressure_solver == "fft"
                                             ? static_cast<std::uint64_t>(g.cell_count()) * sizeof(double)
                                             : (s.pressure_solver == "cg" ? 3 * padded : 6 * padded);
-  return 12 * padded + pressure_solver;
+  return 15 * padded + pressure_solver;
 }
 
 std::unique_ptr<FluidSolver3d> make_fluid_solver_3d(const Grid3d& g, const FluidSettings3d& s) {
