@@ -122,27 +122,37 @@ class FftPressure3d final : public PressureSolver3d {
     if (data_ != nullptr) fftw_free(data_);
     data_ = nullptr;
   }
-  void copy_in(const Field3d& b) {
-    std::size_t n = 0;
-    for_each_interior_cell(g_, [&](std::size_t I, int, int, int) { data_[n++] = b[I]; });
+  // Calls row(j, k, n) for every x-row of cells, n the row's first index in the compact array; the
+  // rows split between the pool's threads (element-wise work: the same bits on any thread count).
+  template <class Row>
+  void for_rows(Row&& row) {
+    const std::size_t ny = static_cast<std::size_t>(g_.n(1)), rows = ny * static_cast<std::size_t>(g_.n(2));
+    const auto body = [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t r = begin; r < end; ++r)
+        row(static_cast<int>(r % ny), static_cast<int>(r / ny), r * static_cast<std::size_t>(g_.n(0)));
+    };
+    if (pool_ != nullptr)
+      pool_->run(rows, body);
+    else
+      body(0, rows, 0);
   }
-  void copy_out(Field3d& p) const {
-    std::size_t n = 0;
-    for_each_interior_cell(g_, [&](std::size_t I, int, int, int) { p[I] = data_[n++]; });
+  void copy_in(const Field3d& b) {
+    for_rows([&](int j, int k, std::size_t n) { std::copy_n(b.data() + g_.index(0, j, k), g_.n(0), data_ + n); });
+  }
+  void copy_out(Field3d& p) {
+    for_rows([&](int j, int k, std::size_t n) { std::copy_n(data_ + n, g_.n(0), p.data() + g_.index(0, j, k)); });
   }
   // p̂ = b̂ / (λx + λy + λz), scaled for the unnormalised round trip; the null mode (the mean, whose
   // eigenvalue is 0) is set to zero, which removes b's mean and makes p mean-free.
   void divide_by_eigenvalues() {
     const double scale = axes_[0].scale * axes_[1].scale * axes_[2].scale;
-    std::size_t n = 0;
-    for (int k = 0; k < g_.n(2); ++k)
-      for (int j = 0; j < g_.n(1); ++j) {
-        const double lyz = axes_[1].eigenvalue[static_cast<std::size_t>(j)] + axes_[2].eigenvalue[static_cast<std::size_t>(k)];
-        for (int i = 0; i < g_.n(0); ++i, ++n) {
-          const double lambda = axes_[0].eigenvalue[static_cast<std::size_t>(i)] + lyz;
-          data_[n] = lambda == 0.0 ? 0.0 : data_[n] / (lambda * scale);
-        }
+    for_rows([&](int j, int k, std::size_t n) {
+      const double lyz = axes_[1].eigenvalue[static_cast<std::size_t>(j)] + axes_[2].eigenvalue[static_cast<std::size_t>(k)];
+      for (int i = 0; i < g_.n(0); ++i, ++n) {
+        const double lambda = axes_[0].eigenvalue[static_cast<std::size_t>(i)] + lyz;
+        data_[n] = lambda == 0.0 ? 0.0 : data_[n] / (lambda * scale);
       }
+    });
   }
 
   Grid3d g_;

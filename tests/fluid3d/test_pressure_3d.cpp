@@ -100,14 +100,20 @@ TEST(FftPressure3d, AgreesWithMultigridAndConjugateGradients) {
     }
 }
 
-TEST(FftPressure3d, RepeatedSolvesGiveTheSameBits) {
-  const Field3d b = random_cell_field(kGrid, 3);
-  Field3d p1(kGrid.padded_size(), 0.0), p2(kGrid.padded_size(), 0.0);
-  make_pressure_solver_3d("fft", kGrid, Boundaries3d::closed_box())->solve(b, p1);
-  auto solver = make_pressure_solver_3d("fft", kGrid, Boundaries3d::closed_box());
+// Repeated solves, another instance, and two threads (the transforms' fixed chunks as the pool's
+// tasks): the same bits.
+TEST(FftPressure3d, RepeatedAndThreadedSolvesGiveTheSameBits) {
+  const Grid3d g({16, 20, 24}, {1.0, 1.25, 1.5});
+  const Field3d b = random_cell_field(g, 3);
+  Field3d p1(g.padded_size(), 0.0), p2(g.padded_size(), 0.0), p3(g.padded_size(), 0.0);
+  make_pressure_solver_3d("fft", g, Boundaries3d::duct(2))->solve(b, p1);
+  auto solver = make_pressure_solver_3d("fft", g, Boundaries3d::duct(2));
   solver->solve(b, p2);
   solver->solve(b, p2);
   EXPECT_EQ(p1, p2);
+  WorkerPool pool(2);
+  make_pressure_solver_3d("fft", g, Boundaries3d::duct(2), {}, &pool)->solve(b, p3);
+  EXPECT_EQ(p1, p3);
 }
 
 // A random velocity (walls and periodic faces as the boundaries say) and one step: the projected
