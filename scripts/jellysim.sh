@@ -59,7 +59,7 @@ build_release() { build build/release -DCMAKE_BUILD_TYPE=Release -DJELLYSIM_WERR
 # need the program and so every module built under ThreadSanitizer (the batch's threaded runner is in
 # `experiments`, nearly the whole program: too slow for `test`).
 TSAN_LIBRARY_PROGRAMS=(test_core test_coupling test_sph test_fluid3d)
-TSAN_LIBRARY_TESTS='^(WorkerPool|SerialWorker|PathChooser|Fluid3dThreads)\.|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^SphBackwardEuler\.RunsAdaptively'
+TSAN_LIBRARY_TESTS='^(WorkerPool|SerialWorker|PathChooser|Fluid3dThreads)\.|^FftPressure3d\.RepeatedAndThreaded|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^SphBackwardEuler\.RunsAdaptively'
 TSAN_CLI_TESTS='^BatchCli\.ThreadedBatch|^Determinism\..*Threads'
 # build_tsan PROGRAM...
 build_tsan() {
