@@ -27,12 +27,24 @@ Boundaries3d Boundaries3d::lid_driven_cavity(double lid_speed_m_per_s) {
   return b;
 }
 
+Boundaries3d Boundaries3d::quarter() const {
+  Boundaries3d b = *this;
+  b.axis[0].symmetry[0] = b.axis[2].symmetry[0] = true;
+  b.axis[0].wall_velocity[0] = b.axis[2].wall_velocity[0] = Vec3{};
+  return b;
+}
+
 void Boundaries3d::validate() const {
   for (std::size_t d = 0; d < 3; ++d)
-    for (const Vec3& u : axis[d].wall_velocity)
+    for (std::size_t side = 0; side < 2; ++side) {
+      const Vec3& u = axis[d].wall_velocity[side];
       if (u[d] != 0.0)
         throw std::invalid_argument("Boundaries3d: a wall normal to axis " + std::to_string(d) +
                                     " may only slide in its plane (normal velocity " + std::to_string(u[d]) + ")");
+      if (axis[d].symmetry[side] && (axis[d].periodic || u != Vec3{}))
+        throw std::invalid_argument("Boundaries3d: a mirror plane normal to axis " + std::to_string(d) +
+                                    " can neither move nor sit on a periodic axis");
+    }
 }
 
 double Boundaries3d::largest_wall_speed(int c) const {
@@ -92,9 +104,9 @@ void fill_tangential_axis(const Grid3d& g, const AxisBoundary3d& ab, int c, int 
     if (ab.periodic) {
       for (int m = 0; m <= 2; ++m) l[(n + m) * s] = l[m * s];
       for (int m = 1; m <= 2; ++m) l[-m * s] = l[(n - m) * s];
-    } else {
-      for (int m = 0; m <= 1; ++m) l[(-1 - m) * s] = lo - l[m * s];
-      for (int m = 0; m <= 2; ++m) l[(n + m) * s] = hi - l[(n - 1 - m) * s];
+    } else {  // a mirror plane copies (even image), a wall mirrors about its velocity (odd image)
+      for (int m = 0; m <= 1; ++m) l[(-1 - m) * s] = ab.symmetry[0] ? l[m * s] : lo - l[m * s];
+      for (int m = 0; m <= 2; ++m) l[(n + m) * s] = ab.symmetry[1] ? l[(n - 1 - m) * s] : hi - l[(n - 1 - m) * s];
     }
   });
 }

@@ -2,8 +2,11 @@
 // Boundary conditions of the 3D fluid: each axis is periodic or closed by two solid walls. A wall
 // is no-slip and may slide in its own plane (a lid): the normal velocity on it is zero, the
 // tangential components take the wall's velocity through ghosts mirrored about it,
-// q_ghost = 2 U_wall − q_inside (the 2D solver's no-slip row, docs/fluids.md). The pressure is
-// Neumann (∂p/∂n = 0) at walls and periodic across periodic axes.
+// q_ghost = 2 U_wall − q_inside (the 2D solver's no-slip row, docs/fluids.md). A side may instead be
+// a mirror plane (`symmetry`, free-slip): zero normal velocity, tangential ghosts copied,
+// q_ghost = q_inside, so a flow symmetric about that plane is computed on one half (the quarter
+// tank of issue 40: planes at low x and low z through the bell's axis). The pressure is Neumann
+// (∂p/∂n = 0) at walls and mirror planes and periodic across periodic axes.
 #include <array>
 #include <span>
 #include <string>
@@ -17,6 +20,8 @@ struct AxisBoundary3d {
   /// The velocity (m/s) of the low (index 0) and high wall of this axis; only its tangential
   /// components may be non-zero (checked by validate).
   std::array<Vec3, 2> wall_velocity{};
+  /// The low / high side is a mirror plane (free-slip) instead of a no-slip wall; its velocity must be 0.
+  std::array<bool, 2> symmetry{};
 };
 
 struct Boundaries3d {
@@ -31,7 +36,12 @@ struct Boundaries3d {
   /// A closed box whose top (high y) wall slides with speed U (m/s) along +x: the lid-driven cavity.
   static Boundaries3d lid_driven_cavity(double lid_speed_m_per_s);
 
-  /// Throws std::invalid_argument if a wall has a normal velocity.
+  /// The same box with mirror planes at the low x and low z sides: the quarter of a tank whose flow
+  /// is symmetric about the planes x = 0 and z = 0 of the quarter (the vertical axis).
+  Boundaries3d quarter() const;
+
+  /// Throws std::invalid_argument if a wall has a normal velocity or a mirror plane a velocity, or
+  /// if a periodic axis has a mirror plane.
   void validate() const;
   /// The largest |velocity component| a wall prescribes along axis c (for the time-step limit).
   double largest_wall_speed(int c) const;
