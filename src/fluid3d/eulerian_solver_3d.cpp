@@ -10,6 +10,8 @@
 #include "jellysim/fluid/limited_flux.hpp"
 #include "jellysim/fluid3d/fluid_solver_3d.hpp"
 
+#include "advection_3d.hpp"
+
 namespace jellysim::fluid3d {
 
 namespace {
@@ -82,8 +84,11 @@ class EulerianSolver3d final : public FluidSolver3d {
   void for_face_rows(int c, Row&& row, int extend_axis = -1);
   template <class Row>
   void for_cell_rows(Row&& row);
+  template <class Face>
+  void for_face_cells(int c, Face&& face);
   void single_step(double dt_s);
   void predict_convection(double dt_s);
+  void predict_advection(double dt_s);
   void predict_viscosity(double dt_s);
   void project(double dt_s);
   double largest_speed(int c) const;
@@ -116,6 +121,18 @@ void EulerianSolver3d::for_face_rows(int c, Row&& row, int extend_axis) {
   });
 }
 
+// Calls face(I, i, j, k) for every unknown face of component c, the rows split between the threads.
+template <class Face>
+void EulerianSolver3d::for_face_cells(int c, Face&& face) {
+  const Grid3d& g = grid();
+  const int i0 = unknown_range(g, settings_.boundaries, c, 0)[0];
+  for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
+    const int j = static_cast<int>((I0 / g.stride(1)) % (static_cast<std::size_t>(g.n(1)) + 1 + 2 * Grid3d::ghosts)) - Grid3d::ghosts;
+    const int k = static_cast<int>(I0 / g.stride(2)) - Grid3d::ghosts;
+    for (std::size_t I = I0; I < I1; ++I) face(I, i0 + static_cast<int>(I - I0), j, k);
+  });
+}
+
 // Calls row(j, k) for every x-row of interior cells, split between the pool's threads.
 template <class Row>
 void EulerianSolver3d::for_cell_rows(Row&& row) {
@@ -140,15 +157,23 @@ double EulerianSolver3d::largest_speed(int c) const {
   return m;
 }
 
-// Δt = τ / (2 Σ_d max|u_d|/h_d + 2ν Σ_d 1/h_d²); 0 for a non-finite velocity.
+// Eulerian: Δt = τ / (2 Σ_d max|u_d|/h_d + 2ν Σ_d 1/h_d²); semi-Lagrangian: the smaller of
+// τ / (2ν Σ_d 1/h_d²) and cfl · min_d h_d / max_d max|u_d|. 0 for a non-finite velocity.
 double EulerianSolver3d::stable_time_step() const {
-  double rate = 0.0;
+  const bool eulerian = settings_.method == FluidMethod3d::eulerian;
+  double rate = 0.0, viscous_rate = 0.0, speed = 0.0, h_min = grid().h(0);
   for (int d = 0; d < 3; ++d) {
-    const double h = grid().h(d);
-    rate += 2.0 * largest_speed(d) / h + 2.0 * settings_.viscosity_m2_per_s / (h * h);
+    const double h = grid().h(d), u = largest_speed(d);
+    rate += 2.0 * u / h;
+    viscous_rate += 2.0 * settings_.viscosity_m2_per_s / (h * h);
+    speed = std::max(speed, u);
+    h_min = std::min(h_min, h);
   }
-  if (!std::isfinite(rate)) return 0.0;
-  return rate > 0.0 ? settings_.safety_factor / rate : std::numeric_limits<double>::infinity();
+  if (!std::isfinite(rate + speed)) return 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (eulerian) return rate + viscous_rate > 0.0 ? settings_.safety_factor / (rate + viscous_rate) : inf;
+  const double viscous = viscous_rate > 0.0 ? settings_.safety_factor / viscous_rate : inf;
+  return std::min(viscous, speed > 0.0 ? settings_.cfl * h_min / speed : inf);
 }
 
 // u* = u + Δt (a − ∇·(u u)) on the unknown faces, ∇·(u u) = Σ_d (F_d⁺ − F_d⁻)/h_d in flux form
@@ -182,6 +207,32 @@ void EulerianSolver3d::predict_convection(double dt_s) {
         f[I] = q[I] + dt_s * (a[I] - conv);
       }
     });
+  }
+}
+
+// u* = A(u) + Δt a: each component traced back along the characteristics (midpoint), with
+// MacCormack's correction φ̂ + ½(φ − A⁻¹φ̂) clamped to the back-trace's sample range.
+void EulerianSolver3d::predict_advection(double dt_s) {
+  const Grid3d& g = grid();
+  const Boundaries3d& b = settings_.boundaries;
+  const Velocity3d& vel = state_.velocity;
+  const bool maccormack = settings_.advection == fluid::AdvectionScheme::maccormack;
+  Field3d &lo = fluxes_[0], &hi = fluxes_[1], &corrected = fluxes_[2];
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t cc = static_cast<std::size_t>(c);
+    Field3d& f = predictor_.c[cc];  // φ̂ first
+    f = vel.c[cc];
+    for_face_cells(c, [&](std::size_t I, int i, int j, int k) {
+      f[I] = sample_face_field(g, b, c, vel.c[cc], trace_midpoint(g, b, vel, g.position(c, i, j, k), -dt_s), &lo[I], &hi[I]);
+    });
+    apply_velocity_boundaries(g, b, c, f);
+    if (maccormack)
+      for_face_cells(c, [&](std::size_t I, int i, int j, int k) {
+        const double back = sample_face_field(g, b, c, f, trace_midpoint(g, b, vel, g.position(c, i, j, k), dt_s));
+        corrected[I] = std::clamp(f[I] + 0.5 * (vel.c[cc][I] - back), lo[I], hi[I]);
+      });
+    const Field3d& a = body_.c[cc];
+    for_face_cells(c, [&](std::size_t I, int, int, int) { f[I] = (maccormack ? corrected[I] : f[I]) + dt_s * a[I]; });
   }
 }
 
@@ -224,7 +275,10 @@ void EulerianSolver3d::project(double dt_s) {
 void EulerianSolver3d::single_step(double dt_s) {
   const auto t0 = Clock::now();
   apply_velocity_boundaries(grid(), settings_.boundaries, state_.velocity);
-  predict_convection(dt_s);
+  if (settings_.method == FluidMethod3d::semi_lagrangian)
+    predict_advection(dt_s);
+  else
+    predict_convection(dt_s);
   const auto t1 = Clock::now();
   predict_viscosity(dt_s);
   const auto t2 = Clock::now();
@@ -294,6 +348,9 @@ std::unique_ptr<FluidSolver3d> make_fluid_solver_3d(const Grid3d& g, const Fluid
   s.boundaries.validate();
   if (s.convection == ConvectionScheme::donor_cell)
     throw std::invalid_argument("3D fluid: convection must be van-leer or koren (the limited second-order schemes)");
+  if (s.advection != fluid::AdvectionScheme::linear && s.advection != fluid::AdvectionScheme::maccormack)
+    throw std::invalid_argument("3D fluid: advection must be linear or maccormack");
+  if (!(s.cfl > 0.0)) throw std::invalid_argument("3D fluid: cfl must be positive");
   if (!(s.density_kg_per_m3 > 0.0) || !(s.viscosity_m2_per_s >= 0.0) || !(s.safety_factor > 0.0 && s.safety_factor <= 1.0))
     throw std::invalid_argument("3D fluid: density > 0, viscosity >= 0 and 0 < safety factor <= 1 are needed");
   const std::uint64_t bytes = estimated_memory_bytes_3d(g, s), budget = core::memory_budget_bytes();

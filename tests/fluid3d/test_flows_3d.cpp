@@ -9,6 +9,7 @@
 #include <functional>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "jellysim/fluid3d/fluid_solver_3d.hpp"
 
@@ -46,9 +47,8 @@ double rms_error(const Grid3d& g, const Velocity3d& vel, const VelocityFunction&
 }
 
 // The RMS velocity error at t_end of a periodic 2π box with n³ cells started from exact(t = 0).
-double periodic_decay_error(int n, double nu, double t_end, const VelocityFunction& exact) {
+double periodic_decay_error(int n, double nu, double t_end, const VelocityFunction& exact, FluidSettings3d s = {}) {
   const Grid3d g({n, n, n}, {2.0 * kPi, 2.0 * kPi, 2.0 * kPi});
-  FluidSettings3d s;
   s.boundaries = Boundaries3d::periodic_box();
   s.viscosity_m2_per_s = nu;
   s.density_kg_per_m3 = 1.0;
@@ -112,6 +112,29 @@ TEST(KineticEnergy3d, OfTheAbcFlowIsTheExactIntegral) {
   Velocity3d vel(g);
   set_velocity(g, b, vel, [](double x, double y, double z, double t) { return abc_flow(x, y, z, t, kNu); });
   EXPECT_NEAR(kinetic_energy_3d(g, b, vel), 12.0 * kPi * kPi * kPi, 1e-12 * 12.0 * kPi * kPi * kPi);
+}
+
+// The semi-Lagrangian step (CFL 0.5) on 12³ and 24³: linear sampling is first order (Δt ∝ Δx from
+// the CFL number), MacCormack's correction second order here, where the viscous limit sets
+// Δt ∝ Δx² (the splitting's O(Δt) error is then O(Δx²) too).
+TEST(SemiLagrangian3d, TaylorGreenDecaysWithLinearAndMacCormackAdvection) {
+  const VelocityFunction exact = [](double x, double y, double z, double t) { return taylor_green(x, y, z, t, kNu); };
+  std::vector<double> orders, errors;
+  for (fluid::AdvectionScheme scheme : {fluid::AdvectionScheme::linear, fluid::AdvectionScheme::maccormack}) {
+    FluidSettings3d s;
+    s.method = FluidMethod3d::semi_lagrangian;
+    s.advection = scheme;
+    s.cfl = 0.5;
+    const double e12 = periodic_decay_error(12, kNu, 1.0, exact, s), e24 = periodic_decay_error(24, kNu, 1.0, exact, s);
+    orders.push_back(std::log2(e12 / e24));
+    errors.push_back(e24);
+    std::printf("  semi-Lagrangian %s, Taylor-Green t = 1: 12^3 %.3e, 24^3 %.3e, order %.3f\n",
+                std::string(fluid::to_string(scheme)).c_str(), e12, e24, orders.back());
+  }
+  EXPECT_NEAR(orders[0], 0.89, 0.03);       // linear: measured 0.892
+  EXPECT_NEAR(errors[0], 3.17e-2, 0.05e-2);  // measured 3.170e-2
+  EXPECT_NEAR(orders[1], 1.85, 0.03);       // MacCormack: measured 1.847
+  EXPECT_NEAR(errors[1], 3.86e-3, 0.05e-3);  // measured 3.855e-3
 }
 
 // The third grid (64³, about 10 s in Release): Release pass only (the name holds "Slow").
@@ -218,12 +241,15 @@ TEST(QuarterTank3d, MirrorPlanesReproduceTheSymmetricFullBox) {
   EXPECT_LT(diff, 1e-15);  // measured 2.8e-17: round-off
 }
 
-// A random flow in the lid-driven cube, five steps on 1 and on 2 threads: the same bits.
+// A random flow in the lid-driven cube, five steps on 1 and on 2 threads: the same bits (both
+// methods).
 TEST(Fluid3dThreads, OneAndTwoThreadsGiveTheSameBits) {
   const Grid3d g({12, 16, 14}, {1.0, 1.0, 1.0});
   std::vector<Velocity3d> results;
-  for (int threads : {1, 2}) {
+  for (int run = 0; run < 4; ++run) {
+    const int threads = 1 + run % 2;
     FluidSettings3d s;
+    s.method = run < 2 ? FluidMethod3d::eulerian : FluidMethod3d::semi_lagrangian;
     s.boundaries = Boundaries3d::lid_driven_cavity(1.0);
     s.viscosity_m2_per_s = 0.01;
     s.threads = threads;
@@ -235,7 +261,10 @@ TEST(Fluid3dThreads, OneAndTwoThreadsGiveTheSameBits) {
     for (int step = 0; step < 5; ++step) solver->step(solver->stable_time_step());
     results.push_back(solver->state().velocity);
   }
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(results[0].c[static_cast<std::size_t>(c)], results[1].c[static_cast<std::size_t>(c)]);
+  for (std::size_t c = 0; c < 3; ++c) {
+    EXPECT_EQ(results[0].c[c], results[1].c[c]);
+    EXPECT_EQ(results[2].c[c], results[3].c[c]);
+  }
 }
 
 }  // namespace

@@ -9,6 +9,12 @@
 // face value of van Leer or Koren (fluid/limited_flux.hpp, Hundsdorfer & Verwer 2003, §III.1).
 // Time step: Δt ≤ τ / (2 Σ_d max|u_d|/h_d + 2ν Σ_d 1/h_d²) (Courant sum ½ for the TVD forward
 // Euler step, the viscous limit added as a rate, as the 2D limited schemes do).
+// With `method = semi_lagrangian` the convective term is replaced by advection along the
+// characteristics: u* = A(uⁿ) + Δt(ν∇²uⁿ + a), A one midpoint back-trace with trilinear sampling
+// (`linear`) or with MacCormack's correction φ̂ + ½(φ − A⁻¹φ̂) clamped to the range of the eight
+// samples the back-trace used (`maccormack`, Selle et al. 2008); Δt ≤ min(τ / (2ν Σ 1/h²),
+// cfl · min h / max|u|). The step is first order in time (the splitting; the 2D solver's
+// Crank–Nicolson trajectory step is not carried over yet).
 // Threads: the predictor and the correction split the rows (j, k) between the pool's threads, each
 // face computed by one thread from the same inputs, so the bytes do not depend on the thread count.
 #include <cstdint>
@@ -23,11 +29,16 @@
 
 namespace jellysim::fluid3d {
 
+enum class FluidMethod3d { eulerian, semi_lagrangian };
+
 struct FluidSettings3d {
+  FluidMethod3d method = FluidMethod3d::eulerian;
   double density_kg_per_m3 = 1000.0;
   double viscosity_m2_per_s = 1e-6;  ///< kinematic viscosity ν
   Boundaries3d boundaries = Boundaries3d::closed_box();
-  fluid::ConvectionScheme convection = fluid::ConvectionScheme::koren;  ///< van-leer or koren
+  fluid::ConvectionScheme convection = fluid::ConvectionScheme::koren;  ///< eulerian: van-leer or koren
+  fluid::AdvectionScheme advection = fluid::AdvectionScheme::maccormack;  ///< semi-Lagrangian: linear or maccormack
+  double cfl = 1.0;  ///< semi-Lagrangian: the largest max|u|Δt/h of a step
   std::string pressure_solver = "fft";                                   ///< "fft", "multigrid" or "cg"
   PressureSettings3d pressure{};
   double safety_factor = 0.5;  ///< τ in the time-step limit
