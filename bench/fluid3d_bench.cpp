@@ -5,6 +5,8 @@
 //    its stable Δt. Counters: the
 //    step's split (convection, viscosity, pressure, ms), the stable Δt (ms) and the simulated
 //    seconds per wall-clock second that Δt allows (real-time factor of the fluid alone).
+//  - BM_Fluid3dStepSemiLagrangian/<threads>: the same with MacCormack semi-Lagrangian advection
+//    (its Δt: CFL 1); the "convection" counter is then the advection.
 //  - BM_Fluid3dPressureSolve: one FFT pressure solve on that grid.
 #include <benchmark/benchmark.h>
 
@@ -20,9 +22,10 @@ using namespace jellysim::fluid3d;
 const Grid3d kTank({48, 96, 48}, {0.24, 0.48, 0.24});
 
 // A smooth flow of peak speed U: Taylor–Green cells along each pair of axes, projected once.
-std::unique_ptr<FluidSolver3d> tank_solver(int threads, double U) {
+std::unique_ptr<FluidSolver3d> tank_solver(int threads, double U, FluidMethod3d method) {
   FluidSettings3d s;
   s.threads = threads;
+  s.method = method;
   s.boundaries = Boundaries3d::closed_box().quarter();
   auto solver = make_fluid_solver_3d(kTank, s);
   const double kx = 0.5 * std::numbers::pi / kTank.size(0), ky = 2.0 * std::numbers::pi / kTank.size(1),
@@ -35,8 +38,8 @@ std::unique_ptr<FluidSolver3d> tank_solver(int threads, double U) {
   return solver;
 }
 
-void BM_Fluid3dStep(benchmark::State& state) {
-  auto solver = tank_solver(static_cast<int>(state.range(0)), 0.1);
+void fluid_step(benchmark::State& state, FluidMethod3d method) {
+  auto solver = tank_solver(static_cast<int>(state.range(0)), 0.1, method);
   double convection = 0.0, viscosity = 0.0, pressure = 0.0, dt = 0.0, total = 0.0;
   for (auto _ : state) {
     dt = solver->stable_time_step();
@@ -55,7 +58,10 @@ void BM_Fluid3dStep(benchmark::State& state) {
   state.counters["realtime_factor"] = dt / (total / n);
   state.counters["cells"] = static_cast<double>(kTank.cell_count());
 }
+void BM_Fluid3dStep(benchmark::State& state) { fluid_step(state, FluidMethod3d::eulerian); }
+void BM_Fluid3dStepSemiLagrangian(benchmark::State& state) { fluid_step(state, FluidMethod3d::semi_lagrangian); }
 BENCHMARK(BM_Fluid3dStep)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Fluid3dStepSemiLagrangian)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Fluid3dPressureSolve(benchmark::State& state) {
   auto solver = make_pressure_solver_3d("fft", kTank, Boundaries3d::closed_box());
