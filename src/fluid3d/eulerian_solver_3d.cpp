@@ -60,9 +60,11 @@ double face_laplacian_3d(const Grid3d& g, const Field3d& q, std::size_t I) {
   return sum;
 }
 
-class EulerianSolver3d final : public FluidSolver3d {
+// The CPU backend: both methods (Eulerian, semi-Lagrangian) share the projection, the threads and
+// the fields.
+class CpuFluidSolver3d final : public FluidSolver3d {
  public:
-  EulerianSolver3d(const Grid3d& g, const FluidSettings3d& s)
+  CpuFluidSolver3d(const Grid3d& g, const FluidSettings3d& s)
       : settings_(s), state_(g), body_(g), predictor_(g),
         fluxes_{Field3d(g.padded_size(), 0.0), Field3d(g.padded_size(), 0.0), Field3d(g.padded_size(), 0.0)},
         rhs_(g.padded_size(), 0.0), phi_(g.padded_size(), 0.0),
@@ -107,7 +109,7 @@ class EulerianSolver3d final : public FluidSolver3d {
 // Calls row(I0, I1) for the unknown faces of component c, one x-row (fixed j, k) at a time, the
 // rows split between the pool's threads; with extend_axis, one face further along that axis.
 template <class Row>
-void EulerianSolver3d::for_face_rows(int c, Row&& row, int extend_axis) {
+void CpuFluidSolver3d::for_face_rows(int c, Row&& row, int extend_axis) {
   const Grid3d& g = grid();
   auto rx = unknown_range(g, settings_.boundaries, c, 0), ry = unknown_range(g, settings_.boundaries, c, 1),
        rz = unknown_range(g, settings_.boundaries, c, 2);
@@ -123,7 +125,7 @@ void EulerianSolver3d::for_face_rows(int c, Row&& row, int extend_axis) {
 
 // Calls face(I, i, j, k) for every unknown face of component c, the rows split between the threads.
 template <class Face>
-void EulerianSolver3d::for_face_cells(int c, Face&& face) {
+void CpuFluidSolver3d::for_face_cells(int c, Face&& face) {
   const Grid3d& g = grid();
   const int i0 = unknown_range(g, settings_.boundaries, c, 0)[0];
   for_face_rows(c, [&](std::size_t I0, std::size_t I1) {
@@ -135,7 +137,7 @@ void EulerianSolver3d::for_face_cells(int c, Face&& face) {
 
 // Calls row(j, k) for every x-row of interior cells, split between the pool's threads.
 template <class Row>
-void EulerianSolver3d::for_cell_rows(Row&& row) {
+void CpuFluidSolver3d::for_cell_rows(Row&& row) {
   const Grid3d& g = grid();
   const std::size_t ny = static_cast<std::size_t>(g.n(1)), rows = ny * static_cast<std::size_t>(g.n(2));
   pool_.run(rows, [&](std::size_t begin, std::size_t end, int) {
@@ -143,7 +145,7 @@ void EulerianSolver3d::for_cell_rows(Row&& row) {
   });
 }
 
-double EulerianSolver3d::largest_speed(int c) const {
+double CpuFluidSolver3d::largest_speed(int c) const {
   const Grid3d& g = grid();
   const Field3d& q = state_.velocity.c[static_cast<std::size_t>(c)];
   double m = settings_.boundaries.largest_wall_speed(c);
@@ -159,7 +161,7 @@ double EulerianSolver3d::largest_speed(int c) const {
 
 // Eulerian: Δt = τ / (2 Σ_d max|u_d|/h_d + 2ν Σ_d 1/h_d²); semi-Lagrangian: the smaller of
 // τ / (2ν Σ_d 1/h_d²) and cfl · min_d h_d / max_d max|u_d|. 0 for a non-finite velocity.
-double EulerianSolver3d::stable_time_step() const {
+double CpuFluidSolver3d::stable_time_step() const {
   const bool eulerian = settings_.method == FluidMethod3d::eulerian;
   double rate = 0.0, viscous_rate = 0.0, speed = 0.0, h_min = grid().h(0);
   for (int d = 0; d < 3; ++d) {
@@ -178,7 +180,7 @@ double EulerianSolver3d::stable_time_step() const {
 
 // u* = u + Δt (a − ∇·(u u)) on the unknown faces, ∇·(u u) = Σ_d (F_d⁺ − F_d⁻)/h_d in flux form
 // (summed x, y, z); the other faces keep u (walls, periodic copies).
-void EulerianSolver3d::predict_convection(double dt_s) {
+void CpuFluidSolver3d::predict_convection(double dt_s) {
   const Grid3d& g = grid();
   const bool koren = settings_.convection == ConvectionScheme::koren;
   for (int c = 0; c < 3; ++c) {
@@ -212,7 +214,7 @@ void EulerianSolver3d::predict_convection(double dt_s) {
 
 // u* = A(u) + Δt a: each component traced back along the characteristics (midpoint), with
 // MacCormack's correction φ̂ + ½(φ − A⁻¹φ̂) clamped to the back-trace's sample range.
-void EulerianSolver3d::predict_advection(double dt_s) {
+void CpuFluidSolver3d::predict_advection(double dt_s) {
   const Grid3d& g = grid();
   const Boundaries3d& b = settings_.boundaries;
   const Velocity3d& vel = state_.velocity;
@@ -237,7 +239,7 @@ void EulerianSolver3d::predict_advection(double dt_s) {
 }
 
 // u* += Δt ν∇²u (explicit).
-void EulerianSolver3d::predict_viscosity(double dt_s) {
+void CpuFluidSolver3d::predict_viscosity(double dt_s) {
   const Grid3d& g = grid();
   const double nu_dt = settings_.viscosity_m2_per_s * dt_s;
   for (int c = 0; c < 3; ++c) {
@@ -252,7 +254,7 @@ void EulerianSolver3d::predict_viscosity(double dt_s) {
 }
 
 // ∇²φ = ∇·u*/Δt, u = u* − Δt∇φ, p = ρφ.
-void EulerianSolver3d::project(double dt_s) {
+void CpuFluidSolver3d::project(double dt_s) {
   const Grid3d& g = grid();
   for_cell_rows([&](int j, int k) {
     for (int i = 0; i < g.n(0); ++i) rhs_[g.index(i, j, k)] = divergence_at(g, predictor_, i, j, k) / dt_s;
@@ -272,7 +274,7 @@ void EulerianSolver3d::project(double dt_s) {
   for (std::size_t n = 0; n < phi_.size(); ++n) state_.pressure[n] = rho * phi_[n];
 }
 
-void EulerianSolver3d::single_step(double dt_s) {
+void CpuFluidSolver3d::single_step(double dt_s) {
   const auto t0 = Clock::now();
   apply_velocity_boundaries(grid(), settings_.boundaries, state_.velocity);
   if (settings_.method == FluidMethod3d::semi_lagrangian)
@@ -288,7 +290,7 @@ void EulerianSolver3d::single_step(double dt_s) {
   state_.time_s += dt_s;
 }
 
-void EulerianSolver3d::step(double dt_s) {
+void CpuFluidSolver3d::step(double dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("FluidSolver3d::step: the time step must be positive");
   double left = dt_s;
   while (left > 0.0) {
@@ -361,7 +363,7 @@ std::unique_ptr<FluidSolver3d> make_fluid_solver_3d(const Grid3d& g, const Fluid
         << static_cast<double>(budget) / (1024.0 * 1024.0) << " MiB, " << core::memory_budget().source << ")";
     throw InputError(msg.str());
   }
-  return std::make_unique<EulerianSolver3d>(g, s);
+  return std::make_unique<CpuFluidSolver3d>(g, s);
 }
 
 }  // namespace jellysim::fluid3d
