@@ -1,4 +1,5 @@
 #include "jellysim/fluid/fft_poisson.hpp"
+#include "jellysim/fluid/fftw_planner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,16 +14,16 @@
 
 namespace jellysim::fluid {
 
-namespace {
-
-using PB = PressureBoundary;
-
-// FFTW's planner (and its allocator, to be safe) is not thread-safe; execution of distinct plans
-// is. Recursive: a plan or buffer released while planning (an exception) takes it again.
-std::recursive_mutex& planner_mutex() {
+std::recursive_mutex& fftw_planner_mutex() {
   static std::recursive_mutex m;
   return m;
 }
+
+namespace {
+
+std::recursive_mutex& planner_mutex() { return fftw_planner_mutex(); }
+
+using PB = PressureBoundary;
 
 /// An fftw_malloc'ed array: aligned as FFTW likes, and always the same array for a plan, so that
 /// every execution takes the code path chosen at plan time.
