@@ -70,5 +70,5 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "ffmpeg, blender")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME jellysim-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
-    "jellysim (= ${PROJECT_VERSION}), cmake (>= 3.25), pkg-config, libeigen3-dev, nlohmann-json3-dev, libtomlplusplus-dev, zlib1g-dev, libpng-dev, libcereal-dev, libegl-dev, libopengl-dev, libfftw3-dev, libplplot-dev")
+    "jellysim (= ${PROJECT_VERSION}), cmake (>= 3.25), pkg-config, libeigen3-dev, nlohmann-json3-dev, libtomlplusplus-dev, zlib1g-dev, libpng-dev, libopenexr-dev, libcereal-dev, libegl-dev, libopengl-dev, libfftw3-dev, libplplot-dev")
 include(CPack)

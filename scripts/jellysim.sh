@@ -17,7 +17,7 @@ PACKAGES=(build-essential cmake pkg-config libeigen3-dev libtomlplusplus-dev nlo
           libgtest-dev libgmock-dev libbenchmark-dev libplplot-dev plplot-driver-cairo fonts-dejavu-core
           libegl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev zlib1g-dev libstb-dev ffmpeg
           libglfw3-dev libimgui-dev xvfb xauth libfftw3-dev clang libclang-rt-14-dev libcereal-dev
-          libopenmpi-dev openmpi-bin libnlopt-cxx-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+          libopenmpi-dev openmpi-bin libnlopt-cxx-dev libopenexr-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
           blender)
 JOBS=$(nproc 2>/dev/null || echo 2)
 

@@ -260,8 +260,8 @@ UmbrellaNoise umbrella_noise(const ImprovedNoise& noise, const NoiseSettings& ns
   t.ridge.resize(static_cast<std::size_t>(J));
   for (int j = 0; j < J; ++j) {
     const double sigma = kTwoPi * j / J;  // eq. 7.12
-    t.structural[static_cast<std::size_t>(j)] =
-        ns.structural_weight * structural_noise(length, ns.structural_frequency, sigma, ns.structural_absolute);
+    t.structural[static_cast<std::size_t>(j)] =  // eq. 7.10/7.11 as the ring can draw it: no saw-tooth
+        ns.structural_weight * structural_noise_resolved(length, ns.structural_frequency, sigma, ns.structural_absolute, J);
     t.ridge[static_cast<std::size_t>(j)] = compression_ridge(ns.compression_frequency, sigma);
   }
   t.unstructured = ns.unstructured_weight != 0.0;

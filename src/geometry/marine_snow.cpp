@@ -13,13 +13,17 @@ constexpr double kGoldenAngle = 2.399963229728653;  // π (3 − √5)
 }  // namespace
 
 MarineSnow::MarineSnow(const std::vector<Vec2>& first_frame, double axis_x_m, const std::array<Vec3, 2>& box,
-                       double radius_m)
+                       double radius_m, double density)
     : axis_x_(axis_x_m), radius_(radius_m) {
   if (!(radius_m > 0.0)) throw std::invalid_argument("marine snow: the speck size must be > 0");
+  if (!(density >= 0.0 && density <= 1.0)) throw std::invalid_argument("marine snow: the density must be in [0, 1]");
+  std::size_t candidate = 0;
   for (std::size_t i = 0; i < first_frame.size(); ++i) {
     const Vec3 p = place(i, first_frame[i]);
-    if (p.x >= box[0].x && p.x <= box[1].x && p.y >= box[0].y && p.y <= box[1].y && p.z >= box[0].z && p.z <= box[1].z)
-      kept_.push_back(i);
+    if (p.x >= box[0].x && p.x <= box[1].x && p.y >= box[0].y && p.y <= box[1].y && p.z >= box[0].z && p.z <= box[1].z) {
+      const double k = static_cast<double>(candidate++);
+      if (std::floor((k + 1.0) * density) > std::floor(k * density)) kept_.push_back(i);
+    }
   }
 }
 

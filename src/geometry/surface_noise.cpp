@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 #include <utility>
 
 namespace jellysim::geometry {
@@ -10,6 +11,27 @@ namespace jellysim::geometry {
 double structural_noise(double length_m, double frequency, double sigma_rad, bool absolute) {
   const double s = std::sin(frequency * sigma_rad);
   return length_m * (absolute ? std::abs(s) : s);  // eq. 7.11 / eq. 7.10
+}
+
+double resolvable_fraction(double cycles_per_ring, int disc_points) {
+  const double full = 0.125 * disc_points, none = 0.25 * disc_points;  // 8 and 4 samples per cycle
+  if (cycles_per_ring <= full) return 1.0;
+  if (cycles_per_ring >= none) return 0.0;
+  return 0.5 * (1.0 + std::cos(std::numbers::pi * (cycles_per_ring - full) / (none - full)));
+}
+
+double structural_noise_resolved(double length_m, double frequency, double sigma_rad, bool absolute,
+                                 int disc_points) {
+  const double f = std::abs(frequency);
+  if (!absolute) return length_m * resolvable_fraction(f, disc_points) * std::sin(frequency * sigma_rad);
+  // |sin x| = 2/π − (4/π) Σ_{m ≥ 1} cos(2 m x) / (4 m² − 1): its m-th term has 2 m f cycles per ring.
+  double sum = 2.0 / std::numbers::pi;
+  for (int m = 1; f > 0.0; ++m) {
+    const double fraction = resolvable_fraction(2.0 * m * f, disc_points);
+    if (fraction == 0.0) break;
+    sum -= fraction * (4.0 / std::numbers::pi) * std::cos(2.0 * m * f * sigma_rad) / (4.0 * m * m - 1.0);
+  }
+  return length_m * (f > 0.0 ? sum : 0.0);
 }
 
 double contraction_amount(double length_m, double rest_length_m, double gamma) {

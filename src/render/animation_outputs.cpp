@@ -19,6 +19,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/io/mesh_files.hpp"
 #include "jellysim/io/point_caches.hpp"
+#include "jellysim/render/exr_frames.hpp"
 #include "jellysim/render/video.hpp"
 
 #ifndef JELLYSIM_WEB_DIR
@@ -71,7 +72,7 @@ class FollowCamera {
     const Vec3 goal = centre - Vec3{0.0, 0.15 * extent_, 0.0};
     target_ = started_ ? target_ + settings_.camera_follow * (goal - target_) : goal;
     started_ = true;
-    return camera_looking_at(target_, view_direction(settings_), settings_.camera_distance * extent_,
+    return camera_looking_at(target_, view_direction(settings_), camera_distance_for(settings_, extent_),
                              settings_.fov_y_deg);
   }
 
@@ -103,20 +104,32 @@ std::array<Vec3, 2> path_bounds(const std::vector<std::vector<jellyfish::SliceFr
   return {lo, hi};
 }
 
+}  // namespace
+
+double camera_distance_for(const PipelineSettings& s, double extent_m) {
+  return s.camera_distance > 0.0 ? s.camera_distance * extent_m : s.camera_distance_m;
+}
+
 /// One camera for the whole animation: looking at the middle of the path's box from the configured
-/// direction, at the follow camera's distance or further, so that the box's bounding sphere fits
-/// the picture's height. The bell then moves across the picture as it swims.
-Camera path_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& s,
-                   const geometry::Mesh& first) {
+/// direction. In metres (the default) at camera_distance_m, so a bigger bell looks bigger; in
+/// mesh extents (camera_distance > 0) at that distance or further, so that the box's bounding
+/// sphere fits the picture's height. The bell then moves across the picture as it swims.
+Camera fixed_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& s,
+                    const geometry::Mesh& first) {
   const auto [lo, hi] = path_bounds(school);
   const geometry::Bounds b = geometry::bounds(first);
   const Vec3 size = b.max - b.min;
   const double extent = std::max({size.x, size.y, size.z});
-  const double radius = 0.5 * geometry::norm(hi - lo);
-  const double half_fov = 0.5 * s.fov_y_deg * std::numbers::pi / 180.0;
-  const double distance = std::max(s.camera_distance * extent, 1.05 * radius / std::sin(half_fov));
+  double distance = camera_distance_for(s, extent);
+  if (s.camera_distance > 0.0) {
+    const double radius = 0.5 * geometry::norm(hi - lo);
+    const double half_fov = 0.5 * s.fov_y_deg * std::numbers::pi / 180.0;
+    distance = std::max(distance, 1.05 * radius / std::sin(half_fov));
+  }
   return camera_looking_at(0.5 * (lo + hi), view_direction(s), distance, s.fov_y_deg);
 }
+
+namespace {
 
 /// Appends part `name` of `mesh` (its block of vertices and its triangles) to `out`'s vertices and
 /// indices; returns the number of indices appended (0 when the mesh has no such part).
@@ -472,7 +485,7 @@ std::unique_ptr<geometry::MarineSnow> marine_snow(const School& school, const st
   const jellyfish::SliceFrame& first = school.front().front();
   const double axis_x = 0.5 * (first.umbrella.front().x + first.umbrella.back().x);
   return std::make_unique<geometry::MarineSnow>(tracers.front(), axis_x, std::array<Vec3, 2>{lo - margin, hi + margin},
-                                                s.snow_size_m);
+                                                s.snow_size_m, s.snow_density);
 }
 
 std::vector<geometry::GeometryBuilder> geometry_builders(const School& school, const std::vector<std::uint64_t>& seeds,
@@ -490,13 +503,13 @@ std::vector<geometry::GeometryBuilder> geometry_builders(const School& school, c
 /// (stopped first when the run fails: the file is removed), and folders only for what is written
 /// (an empty folder would be a surprise).
 struct FrameWriters {
-  FrameWriters(const PipelineSettings& s, const io::OutputDir& out) : pixels(s.png_frames || s.video) {
+  FrameWriters(const PipelineSettings& s, const io::OutputDir& out) : pixels(s.png_frames || s.video || s.exr) {
     if (pixels) renderer = std::make_unique<OffscreenRenderer>(s.width_px, s.height_px, s.samples);
     if (s.video) {
       video_file.emplace(out.temporary_for("jellyfish.mp4"));
       video = std::make_unique<Mp4Writer>(video_file->path(), video_file->fd(), s.width_px, s.height_px, s.fps);
     }
-    if (s.png_frames) frame_dir.emplace(out.subdirectory("frames"));
+    if (s.png_frames || s.exr) frame_dir.emplace(out.subdirectory("frames"));
     if (s.obj || s.ply) mesh_dir.emplace(out.subdirectory("meshes"));
   }
   bool pixels;
@@ -534,6 +547,8 @@ class AnimationWriter {
         caches_(school.size()),
         caching_(s.pc2 || s.mdd || s.usda || s.glb) {
     result_.marine_snow_specks = snow_ ? snow_->count() : 0;
+    style_ = s.style;
+    style_.tissue_thickness_m = school.front().front().thickness_m;
     result_.renderer = writers_.renderer ? writers_.renderer->renderer_name() : "";
   }
 
@@ -541,7 +556,7 @@ class AnimationWriter {
     auto t0 = Clock::now();
     geometry::FrameGeometry g = jellyfish_geometry(k);
     if (!cameras_.follow) cameras_.follow = std::make_unique<FollowCamera>(s_, g.mesh);
-    if (s_.camera == "fixed" && !cameras_.fixed) cameras_.fixed = path_camera(school_, s_, g.mesh);
+    if (s_.camera == "fixed" && !cameras_.fixed) cameras_.fixed = fixed_camera(school_, s_, g.mesh);
     add_surroundings(k, g.mesh);
     if (caching_) caches_.add(parts_, g.mesh);
     geometry_s_ += seconds_since(t0);
@@ -610,13 +625,29 @@ class AnimationWriter {
     return view;
   }
 
+  /// Frame k's pixels: the PNG (RGBA over a transparent background, else RGB), the video's frame
+  /// and, with render.exr, the EXR (beauty and the depth and velocity passes).
   void render_frame(std::size_t k, const geometry::Mesh& mesh, const Camera& view) {
     const auto t0 = Clock::now();
-    writers_.renderer->render(mesh, view, s_.style, image_);
+    const bool transparent = s_.style.background == Background::transparent;
+    OffscreenRenderer& renderer = *writers_.renderer;
+    renderer.draw(mesh, view, style_);
+    if ((s_.png_frames && transparent) || s_.exr) renderer.read_back(rgba_);
+    if (writers_.video || (s_.png_frames && !transparent)) renderer.read_back(image_);
+    if (s_.exr) {
+      renderer.draw_passes(mesh, previous_.positions.empty() ? mesh.positions : previous_.positions, view,
+                           previous_.camera.value_or(view), passes_);
+      previous_ = {mesh.positions, view};
+    }
     render_s_ += seconds_since(t0);
     if (s_.png_frames) {
       const std::string name = frame_name(k, "png");
-      writers_.frame_dir->write_text(name, png_bytes(image_));
+      writers_.frame_dir->write_text(name, transparent ? png_bytes(rgba_) : png_bytes(image_));
+      result_.files.push_back("frames/" + name);
+    }
+    if (s_.exr) {
+      const std::string name = frame_name(k, "exr");
+      writers_.frame_dir->write_text(name, exr_bytes(rgba_, passes_));
       result_.files.push_back("frames/" + name);
     }
     if (writers_.video) writers_.video->add(image_);
@@ -678,6 +709,14 @@ class AnimationWriter {
   Cameras cameras_;
   double geometry_s_ = 0.0, render_s_ = 0.0;
   RgbImage image_;  // reused frame to frame
+  RgbaImage rgba_;
+  FramePasses passes_;
+  /// The previous frame's vertices and camera (the velocity pass).
+  struct {
+    std::vector<Vec3> positions;
+    std::optional<Camera> camera;
+  } previous_;
+  RenderStyle style_;  ///< s.style with the tissue's thickness from the first slice
   std::vector<geometry::FrameGeometry> parts_;
   std::vector<geometry::TexCoord> frame_uv_;  ///< the merged jellyfish's (per-frame OBJ)
   CacheRecorder caches_;

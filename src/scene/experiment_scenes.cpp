@@ -77,6 +77,8 @@ ParameterTable make_stages() {
       integer("output.panel_height", "300", 64, 2048, "pixels per panel"),
       with_default(render.at("render.obj"), "true", "meshes/frame_0000.obj …"),
       with_default(render.at("render.ply"), "true", "meshes/frame_0000.ply …"),
+      with_default(render.at("render.disc_points"), "160",
+                   "points around each disc: the structural ridges (18 a ring) need ≥ 144 to be drawn"),
   };
   return ParameterTable(
       "stages",

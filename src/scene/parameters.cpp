@@ -98,6 +98,9 @@ Parameter choice(std::string key, std::string value, std::vector<std::string> ch
 Parameter vec2(std::string key, std::string value, std::string unit, config::Range range, std::string description) {
   return {std::move(key), Type::vec2, std::move(value), std::move(unit), range, {}, 0, std::move(description)};
 }
+Parameter vec3(std::string key, std::string value, std::string unit, config::Range range, std::string description) {
+  return {std::move(key), Type::numbers, std::move(value), std::move(unit), range, {}, 3, std::move(description)};
+}
 
 }  // namespace param
 
@@ -110,7 +113,8 @@ std::string allowed_values(const Parameter& p) {
     case Type::integers:
       return (p.length > 0 ? std::to_string(p.length) + " integers, each in " : "integers, each in ") +
              p.range.describe();
-    case Type::numbers: return "numbers, each in " + p.range.describe();
+    case Type::numbers:
+      return (p.length > 0 ? std::to_string(p.length) + " numbers, each in " : "numbers, each in ") + p.range.describe();
     case Type::vec2: {
       const bool any = !std::isfinite(p.range.min) && !std::isfinite(p.range.max);
       return any ? "[x, y]" : "[x, y], each in " + p.range.describe();
@@ -232,7 +236,12 @@ std::vector<std::int64_t> Reader::integers(std::string_view key) const {
 }
 
 std::vector<double> Reader::numbers(std::string_view key) const {
-  return config_.numbers(key, expect(key, Type::numbers).range);
+  const Parameter& p = expect(key, Type::numbers);
+  std::vector<double> v = config_.numbers(key, p.range);
+  if (p.length > 0 && v.size() != static_cast<std::size_t>(p.length))
+    throw InputError("field '" + std::string(key) + "' must have " + std::to_string(p.length) + " entries, each in " +
+                     p.range.describe());
+  return v;
 }
 
 std::vector<std::string> Reader::choices(std::string_view key) const {

@@ -1,5 +1,8 @@
 #include "jellysim/scene/render_settings.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "jellysim/core/errors.hpp"
@@ -23,7 +26,10 @@ std::vector<Parameter> render_section_parameters() {
       integer("render.tube_sides", "6", 3, 64, "tentacle tube cross-section"),
       number("render.tentacle_radius", "0.00025", "m", Range::positive(), "at the root (tapers to 30 % at the tip)"),
       choice("render.interpolant", "catmull-rom", {"thesis", "catmull-rom"}, "eq. 7.8 as printed, or Catmull–Rom"),
-      number("render.camera_distance", "2.6", "first-frame mesh extents", Range::positive(), "camera distance"),
+      number("render.camera_distance_m", "0.22", "m", Range::positive(),
+             "camera distance from its target: a bigger bell looks bigger"),
+      number("render.camera_distance", "0.0", "first-frame mesh extents", Range::non_negative(),
+             "> 0: the camera distance in first-frame mesh extents instead (the former framing: every bell the same size); 0: use camera_distance_m"),
       number("render.camera_elevation_deg", "12.0", "°", Range::closed(-89.0, 89.0), "camera elevation"),
       number("render.camera_azimuth_deg", "25.0", "°", Range::closed(-360.0, 360.0), "camera azimuth"),
       choice("render.camera", "fixed", {"fixed", "follow"},
@@ -37,6 +43,34 @@ std::vector<Parameter> render_section_parameters() {
              "base alpha of the translucent umbrella (rim adds more at grazing angles)"),
       number("render.tentacle_opacity", "0.75", "", Range::closed(0.0, 1.0), "alpha of the tentacles"),
       number("render.rim", "0.55", "", Range::closed(0.0, 1.0), "rim opacity/brightness at grazing angles"),
+  };
+}
+
+// [render]'s look: colours, the bell's tissue, the key light, the background (issue 39).
+std::vector<Parameter> look_parameters() {
+  const Range unit = Range::closed(0.0, 1.0);
+  return {
+      vec3("render.rim_color", "[0.45, 0.65, 0.75]", "", unit, "linear RGB of the rim's added light"),
+      vec3("render.bell_color", "[0.78, 0.9, 1.0]", "", unit,
+           "linear RGB of the umbrella; also the tissue's attenuation colour"),
+      vec3("render.tentacle_color", "[1.0, 0.72, 0.8]", "", unit, "linear RGB of the tentacles"),
+      number("render.transmission", "1.0", "", unit,
+             "fraction of the light from behind that the bell's tissue passes (where its opacity lets it through)"),
+      number("render.attenuation_distance", "1.0", "m", Range::positive(),
+             "Beer–Lambert: light through this much tissue keeps bell_color of itself"),
+      vec3("render.key_light_direction", "[0.2, 1.0, 0.6]", "", Range{},
+           "towards the key light, world axes (y up; normalised; not zero)"),
+      vec3("render.key_light_color", "[0.95, 0.98, 1.0]", "", Range::closed(0.0, 100.0), "linear RGB of the key light"),
+      choice("render.background", "water", {"water", "solid", "transparent"},
+             "water: gradient and light shafts; solid: background_color; transparent: RGBA frames, alpha 0 (the video is over black)"),
+      vec3("render.background_color", "[0.0, 0.05, 0.13]", "", unit, "linear RGB of the solid background"),
+  };
+}
+
+// [render]'s output files and the marine snow.
+std::vector<Parameter> output_parameters() {
+  const Range unit = Range::closed(0.0, 1.0);
+  return {
       boolean("render.png_frames", "true", "frames/frame_0000.png …"),
       boolean("render.video", "true", "jellyfish.mp4 (ffmpeg, H.264)"),
       boolean("render.glb", "true", "jellyfish.glb (glTF 2.0: a node per jellyfish with its root motion, quantized morph targets)"),
@@ -49,6 +83,9 @@ std::vector<Parameter> render_section_parameters() {
       boolean("render.marine_snow", "true",
               "the simulation's tracers as specks around the bell's axis: motion reads even with a follow camera"),
       number("render.snow_size", "0.0003", "m", Range{0.0, 0.01, true, false}, "size of a marine snow speck"),
+      number("render.snow_density", "1.0", "", unit, "fraction of the tracers near the bell drawn as marine snow"),
+      boolean("render.exr", "false",
+              "frames/frame_0000.exr: OpenEXR with beauty (RGBA, linear half), depth (Z, m) and velocity (px per frame)"),
       boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
       boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
       boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
@@ -82,6 +119,8 @@ std::vector<Parameter> noise_section_parameters() {
 
 ParameterTable make_render_parameters() {
   std::vector<Parameter> p = render_section_parameters();
+  for (std::vector<Parameter> more : {look_parameters(), output_parameters()})
+    for (Parameter& q : more) p.push_back(std::move(q));
   for (Parameter& n : noise_section_parameters()) p.push_back(std::move(n));
   return ParameterTable("render", "", std::move(p));
 }
@@ -103,6 +142,38 @@ geometry::NoiseSettings read_noise(const Reader& r) {
   n.tentacles = r.boolean("render.noise.tentacles");
   n.bend_shell = r.boolean("render.noise.bend_shell");
   return n;
+}
+
+std::array<double, 3> rgb(const Reader& r, std::string_view key) {
+  const std::vector<double> v = r.numbers(key);
+  return {v[0], v[1], v[2]};
+}
+
+render::Background parse_background(const std::string& name) {
+  if (name == "solid") return render::Background::solid;
+  if (name == "transparent") return render::Background::transparent;
+  return render::Background::water;
+}
+
+/// The look: colours, the bell's tissue, the key light and the background.
+void read_look(const Reader& r, render::PipelineSettings& s) {
+  render::RenderStyle& style = s.style;
+  const auto bell = rgb(r, "render.bell_color"), tentacles = rgb(r, "render.tentacle_color");
+  std::copy(bell.begin(), bell.end(), style.umbrella.begin());
+  std::copy(tentacles.begin(), tentacles.end(), style.tentacles.begin());
+  style.rim_colour = rgb(r, "render.rim_color");
+  style.transmission = r.number("render.transmission");
+  style.attenuation_distance_m = r.number("render.attenuation_distance");
+  const auto d = rgb(r, "render.key_light_direction");
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(length > 1e-9))
+    throw InputError("field 'render.key_light_direction' = [" + config::format_number(d[0]) + ", " +
+                     config::format_number(d[1]) + ", " + config::format_number(d[2]) +
+                     "] must not be the zero vector (it points towards the light)");
+  style.lights[0].direction = {d[0], d[1], d[2]};  // the shader normalises it
+  style.lights[0].colour = rgb(r, "render.key_light_color");
+  style.background = parse_background(r.choice("render.background"));
+  style.background_colour = rgb(r, "render.background_color");
 }
 
 }  // namespace
@@ -129,6 +200,7 @@ render::PipelineSettings read_render_settings(const config::Config& c) {
   g.interpolant = geometry::parse_interpolant(r.choice("render.interpolant"), "render.interpolant");
   g.noise = read_noise(r);
   s.camera_distance = r.number("render.camera_distance");
+  s.camera_distance_m = r.number("render.camera_distance_m");
   s.camera_elevation_deg = r.number("render.camera_elevation_deg");
   s.camera_azimuth_deg = r.number("render.camera_azimuth_deg");
   s.camera = r.choice("render.camera");
@@ -138,6 +210,7 @@ render::PipelineSettings read_render_settings(const config::Config& c) {
   s.style.umbrella[3] = r.number("render.umbrella_opacity");
   s.style.tentacles[3] = r.number("render.tentacle_opacity");
   s.style.rim = r.number("render.rim");
+  read_look(r, s);
   s.png_frames = r.boolean("render.png_frames");
   s.video = r.boolean("render.video");
   s.glb = r.boolean("render.glb");
@@ -148,6 +221,8 @@ render::PipelineSettings read_render_settings(const config::Config& c) {
   s.glb_every = static_cast<int>(r.integer("render.glb_every"));
   s.marine_snow = r.boolean("render.marine_snow");
   s.snow_size_m = r.number("render.snow_size");
+  s.snow_density = r.number("render.snow_density");
+  s.exr = r.boolean("render.exr");
   s.pc2 = r.boolean("render.pc2");
   s.mdd = r.boolean("render.mdd");
   s.usda = r.boolean("render.usda");

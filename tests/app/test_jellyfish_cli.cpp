@@ -177,8 +177,10 @@ TEST(JellyfishCli, RunIsTheMainJobFromSimulationToVideoAndGltf) {
 }
 
 // The main job shows travel: with the default fixed camera the bell's middle moves across the
-// picture (measured 0.315 picture heights over the 3 cycles on the preview grid; the follow camera
-// kept it in place).
+// picture (the follow camera keeps it in place). Measured over the 3 cycles on the preview grid:
+// 0.221 picture heights with the camera 0.22 m away (issue 39: the distance in metres, so a bigger
+// bell looks bigger; 0.315 before, when the camera came as close as the shorter path of the preview
+// grid allowed). The main job on its own grid travels 0.553 (0.548 before).
 TEST(JellyfishCli, MainJobShowsTheBellSwimAcrossThePicture) {
   const fs::path dir = fresh("run_travel"), follow = fresh("run_follow");
   const std::string lean = " --quiet --set render.png_frames=false --set render.video=false --set render.viewer=false"
@@ -186,10 +188,10 @@ TEST(JellyfishCli, MainJobShowsTheBellSwimAcrossThePicture) {
   const Result r = run_cli("run" + lean + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
-  EXPECT_GE(s["animation"]["bell_screen_travel"].get<double>(), 0.25);
+  EXPECT_GE(s["animation"]["bell_screen_travel"].get<double>(), 0.2);
   // Marine snow: the tracers near the bell's path as specks (454 of the 1600 measured).
   EXPECT_NEAR(s["animation"]["marine_snow_specks"].get<int>(), 454, 10);
-  EXPECT_NEAR(s["animation"]["bell_screen_travel"].get<double>(), 0.315, 0.01);
+  EXPECT_NEAR(s["animation"]["bell_screen_travel"].get<double>(), 0.221, 0.01);
   const Result rf = run_cli("run --duration 1 --set render.camera=\"follow\"" + lean + follow.string());
   ASSERT_EQ(rf.exit_code, 0) << rf.output;
   const auto sf = nlohmann::json::parse(slurp(follow / "summary.json"));

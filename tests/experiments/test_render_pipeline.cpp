@@ -3,7 +3,9 @@
 // the reason) where no EGL device exists.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,16 @@ namespace fs = std::filesystem;
 using testing::scratch;
 
 config::Config stages_config() { return experiments::default_config(experiments::find_experiment("stages")); }
+
+/// The stages experiment's [render] settings at a small size and level of detail.
+PipelineSettings small_settings(int width_px, int height_px) {
+  PipelineSettings s = scene::read_render_settings(stages_config());
+  s.width_px = width_px;
+  s.height_px = height_px;
+  s.geometry.latitude_samples = 21;
+  s.geometry.disc_points = 24;
+  return s;
+}
 
 TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
   const PipelineSettings s = scene::read_render_settings(stages_config());
@@ -42,13 +54,80 @@ TEST(Pipeline, SettingsComeFromTheConfigAndBadValuesNameTheField) {
   }
 }
 
+TEST(Pipeline, LookControlsAreReadWithTheirRulesAndDefaultsKeepTheFormerLook) {
+  const PipelineSettings d = scene::read_render_settings(stages_config());
+  const RenderStyle former;  // the hard-wired look before issue 39
+  EXPECT_EQ(d.style.umbrella, former.umbrella);  // with umbrella_opacity 0.35
+  EXPECT_EQ(d.style.tentacles, former.tentacles);
+  EXPECT_EQ(d.style.rim_colour, former.rim_colour);
+  EXPECT_EQ(d.style.lights[0].colour, former.lights[0].colour);
+  EXPECT_EQ(d.style.background, Background::water);
+  EXPECT_EQ(d.style.transmission, 1.0);
+  EXPECT_FALSE(d.exr);
+  EXPECT_EQ(d.snow_density, 1.0);
+  config::Config c = stages_config();
+  for (const char* set : {"render.bell_color=[0.9, 0.5, 0.2]", "render.key_light_direction=[0, 2, 0]",
+                          "render.key_light_color=[2, 2, 3]", "render.background=\"transparent\"",
+                          "render.transmission=0.4", "render.attenuation_distance=0.002", "render.exr=true",
+                          "render.snow_density=0.5", "render.camera_distance_m=0.3"})
+    c.set(set);
+  const PipelineSettings s = scene::read_render_settings(c);
+  EXPECT_EQ(s.style.umbrella, (std::array<double, 4>{0.9, 0.5, 0.2, 0.35}));
+  EXPECT_EQ(s.style.lights[0].direction.y, 2.0);  // normalised by the shader
+  EXPECT_EQ(s.style.lights[0].colour, (std::array<double, 3>{2.0, 2.0, 3.0}));
+  EXPECT_EQ(s.style.background, Background::transparent);
+  EXPECT_EQ(s.style.transmission, 0.4);
+  EXPECT_EQ(s.style.attenuation_distance_m, 0.002);
+  EXPECT_TRUE(s.exr);
+  EXPECT_EQ(s.snow_density, 0.5);
+  EXPECT_EQ(s.camera_distance_m, 0.3);
+  // Bad values: an InputError naming the field and what is allowed.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"render.bell_color=[1.5, 0, 0]", "[0, 1]"},           {"render.tentacle_color=[1, 1]", "3 entries"},
+      {"render.key_light_direction=[0, 0, 0]", "zero"},     {"render.key_light_color=[101, 0, 0]", "[0, 100]"},
+      {"render.background=\"black\"", "transparent"},       {"render.transmission=1.2", "[0, 1]"},
+      {"render.attenuation_distance=0", "(0, inf)"},        {"render.snow_density=-0.1", "[0, 1]"},
+      {"render.camera_distance_m=0", "(0, inf)"}};
+  for (const auto& [set, allowed] : bad) {
+    config::Config b = stages_config();
+    b.set(set);
+    const std::string field = set.substr(0, set.find('='));
+    try {
+      scene::read_render_settings(b);
+      ADD_FAILURE() << set << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(allowed), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Pipeline, TransparentFramesAreRgbaAndExrFramesHoldThePasses) {
+  REQUIRE_OFFSCREEN_GL();
+  PipelineSettings s = small_settings(64, 48);
+  s.video = s.glb = s.viewer = s.pc2 = false;
+  s.style.background = Background::transparent;
+  s.exr = true;
+  s.camera_distance_m = 0.12;
+  std::vector<jellyfish::SliceFrame> frames;
+  for (int k = 0; k < 2; ++k) {
+    geometry::SyntheticBell spec;
+    spec.aperture_centre_m = {0.0, 0.004 * k};  // swims up 4 mm a frame
+    spec.time_s = k / 30.0;
+    frames.push_back(geometry::synthetic_bell(spec));
+  }
+  const fs::path dir = scratch("rgba_exr");
+  write_animation_outputs(frames, s, io::OutputDir(dir));
+  const RgbaImage png = read_png_rgba(dir / "frames/frame_0001.png");
+  EXPECT_EQ(png.at(0, 0)[3], 0);            // the background
+  EXPECT_GT(png.at(32, 24)[3], 80);         // the bell
+  EXPECT_GT(fs::file_size(dir / "frames/frame_0001.exr"), 1000u);
+  fs::remove_all(dir.parent_path());
+}
+
 TEST(Pipeline, WritesEveryPromisedFile) {
   REQUIRE_OFFSCREEN_GL();
-  PipelineSettings s = scene::read_render_settings(stages_config());
-  s.width_px = 96;
-  s.height_px = 72;
-  s.geometry.latitude_samples = 21;
-  s.geometry.disc_points = 24;
+  PipelineSettings s = small_settings(96, 72);
   s.video = !find_ffmpeg().empty();
   std::vector<jellyfish::SliceFrame> frames;
   for (int k = 0; k < 4; ++k) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 #include "jellysim/geometry/extrapolation.hpp"
@@ -140,7 +141,8 @@ TEST(Noise, EachKindMovesTheSurfaceAsDescribed) {
   const double height = 0.028;
   GeometrySettings structural = plain;
   structural.noise.structural_weight = 0.01875;
-  EXPECT_NEAR(max_shift(expanded, structural, true), 0.01875 * height, 0.01875 * height * 0.01);
+  // 64 disc points cannot draw 18 ridges a ring: the ridges' mean offset, 2/π of the amplitude.
+  EXPECT_NEAR(max_shift(expanded, structural, true), 2.0 / std::numbers::pi * 0.01875 * height, 1e-9 * height);
   GeometrySettings compression = plain;
   compression.noise.compression_weight = 0.125;
   EXPECT_EQ(max_shift(contracted, compression, false), 0.0);  // exumbrellar side only
@@ -150,6 +152,39 @@ TEST(Noise, EachKindMovesTheSurfaceAsDescribed) {
   unstructured.noise.unstructured_weight = 0.45;
   EXPECT_GT(max_shift(expanded, unstructured, true), 1e-4);
   EXPECT_GT(max_shift(expanded, unstructured, false), 1e-4);
+}
+
+/// Max − min over the rim ring (the last exumbrellar ring) of how far the structural noise moved it.
+double rim_ridge_depth(int disc_points) {
+  const jellyfish::SliceFrame expanded = synthetic_bell(0.04, 0.028, 0.0, 21, 8);
+  GeometrySettings plain = no_noise();
+  plain.disc_points = disc_points;
+  GeometrySettings ridges = plain;
+  ridges.noise.structural_weight = 0.01875;
+  const FrameGeometry a = build(expanded, plain), b = build(expanded, ridges);
+  double lo = INFINITY, hi = 0.0;
+  for (int j = 0; j < disc_points; ++j) {
+    const std::uint32_t v = a.umbrella.vertex(a.umbrella.exumbrella_rings, j);
+    const double shift = norm(a.mesh.positions[v] - b.mesh.positions[v]);
+    lo = std::min(lo, shift);
+    hi = std::max(hi, shift);
+  }
+  return hi - lo;
+}
+
+TEST(Noise, StructuralRidgesAreDrawnOnlyWhereTheRingResolvesThem) {
+  const double amplitude = 0.01875 * 0.028;
+  // 64 points, 3.6 a ridge: point samples of |sin 9σ| made the rim a saw-tooth (depth = the full
+  // amplitude, 0.53 mm); the ring now keeps only what it can draw smoothly: a constant offset.
+  EXPECT_LT(rim_ridge_depth(64), 1e-9 * amplitude);
+  // 256 points, 14 a ridge: the ridges are drawn (measured 0.865 of the amplitude, the truncated series).
+  EXPECT_NEAR(rim_ridge_depth(256), 0.865 * amplitude, 0.005 * amplitude);
+  EXPECT_DOUBLE_EQ(resolvable_fraction(8.0, 64), 1.0);
+  EXPECT_DOUBLE_EQ(resolvable_fraction(12.0, 64), 0.5);
+  EXPECT_DOUBLE_EQ(resolvable_fraction(16.0, 64), 0.0);
+  // Fully resolved, the series is |sin| itself (to its truncation).
+  EXPECT_NEAR(structural_noise_resolved(1.0, 1.0, 0.7, true, 100000), std::abs(std::sin(0.7)), 1e-3);
+  EXPECT_DOUBLE_EQ(structural_noise_resolved(2.0, 9.0, 0.1, false, 1000), 2.0 * std::sin(0.9));
 }
 
 TEST(Noise, SeedChangesTheIndividualAndRunsRepeat) {

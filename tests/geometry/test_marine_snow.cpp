@@ -39,5 +39,21 @@ TEST(MarineSnow, KeepsEachTracersHeightAndDistanceFromTheAxis) {
   EXPECT_THROW(snow.append({{0.1, 0.1}}, mesh), std::invalid_argument);  // fewer tracers than the first frame
 }
 
+TEST(MarineSnow, DensityKeepsThatFractionOfTheTracersEvenlySpread) {
+  std::vector<Vec2> tracers;
+  for (int i = 0; i < 1000; ++i) tracers.push_back({0.1 + 1e-4 * i, 0.05});
+  const std::array<Vec3, 2> box{Vec3{0.0, 0.0, -0.5}, Vec3{0.5, 0.5, 0.5}};
+  EXPECT_EQ(MarineSnow(tracers, 0.1, box, 0.001).count(), 1000u);
+  EXPECT_EQ(MarineSnow(tracers, 0.1, box, 0.001, 0.25).count(), 250u);
+  EXPECT_EQ(MarineSnow(tracers, 0.1, box, 0.001, 0.0).count(), 0u);
+  Mesh quarter;
+  MarineSnow(tracers, 0.1, box, 0.001, 0.25).append(tracers, quarter);
+  // Every fourth tracer: the first kept is tracer 3, the last tracer 999.
+  EXPECT_NEAR(std::hypot(quarter.positions[0].x + quarter.positions[1].x + quarter.positions[2].x + quarter.positions[3].x - 0.4,
+                         quarter.positions[0].z + quarter.positions[1].z + quarter.positions[2].z + quarter.positions[3].z),
+              4 * 3e-4, 1e-12);
+  EXPECT_THROW(MarineSnow(tracers, 0.1, box, 0.001, 1.5), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace jellysim::geometry

@@ -15,9 +15,11 @@ namespace jellysim::geometry {
 
 class MarineSnow {
  public:
-  /// Keeps the particles whose 3D place in the first frame lies inside `box` (lower, upper corner);
-  /// `radius_m` > 0 is each speck's size.
-  MarineSnow(const std::vector<Vec2>& first_frame, double axis_x_m, const std::array<Vec3, 2>& box, double radius_m);
+  /// Keeps the particles whose 3D place in the first frame lies inside `box` (lower, upper corner),
+  /// and of those the fraction `density` ∈ [0, 1], evenly spread over their order (the k-th when
+  /// ⌊(k + 1) density⌋ > ⌊k density⌋); `radius_m` > 0 is each speck's size.
+  MarineSnow(const std::vector<Vec2>& first_frame, double axis_x_m, const std::array<Vec3, 2>& box, double radius_m,
+             double density = 1.0);
 
   /// Appends this frame's specks to `mesh` as part "snow" (same particles, same order every frame).
   void append(const std::vector<Vec2>& tracers, Mesh& mesh) const;

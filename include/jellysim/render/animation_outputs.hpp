@@ -25,7 +25,12 @@ struct PipelineSettings {
   int width_px = 640;
   int height_px = 480;
   double fps = 30.0;                  ///< video frame rate: 1 / the recorded frame interval (real time)
-  double camera_distance = 2.6;       ///< camera distance in first-frame mesh extents
+  /// The camera's distance from its target (m): a bigger bell looks bigger. The fixed camera looks at
+  /// the middle of the path the jellyfish took from this distance (not fitted to the path).
+  double camera_distance_m = 0.22;
+  /// > 0: the distance in first-frame mesh extents instead (and the fixed camera backs off until the
+  /// path fits the picture), the framing before 2026-11-28 with 2.6: every bell looked the same size.
+  double camera_distance = 0.0;
   double camera_elevation_deg = 12.0; ///< above the horizontal
   double camera_azimuth_deg = 25.0;   ///< around the axis, from the slice normal (+z)
   /// "fixed": one camera for the whole animation, framing the path the jellyfish took (computed
@@ -53,6 +58,10 @@ struct PipelineSettings {
   /// Marine snow: the simulation's tracers as specks of this size (m) in the 3D picture.
   bool marine_snow = true;
   double snow_size_m = 0.0003;
+  double snow_density = 1.0;  ///< fraction of the tracers near the jellyfish drawn as specks
+  /// frames/frame_NNNN.exr: beauty (RGBA, linear half), depth (Z, m) and screen-space velocity
+  /// (velocity.X, velocity.Y: pixels per frame) passes (render/exr_frames.hpp).
+  bool exr = false;
   /// viewer.html: embed the .glb as base64 (jellyfish.glb.js, opens from file://) instead of
   /// loading jellyfish.glb beside it (needs a web server: browsers refuse file:// fetches).
   bool page_embed = false;
@@ -117,6 +126,16 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
                                          const io::OutputDir& out, const FrameProgress& progress = {},
                                          const ObstacleFrames& obstacles = {},
                                          const std::vector<std::vector<Vec2>>& tracers = {});
+
+/// The camera distance (m) for a first frame whose mesh is `extent_m` across at its widest:
+/// camera_distance × extent when camera_distance > 0, else camera_distance_m.
+double camera_distance_for(const PipelineSettings& settings, double extent_m);
+
+/// The fixed camera of an animation: looking at the middle of the box that holds every jellyfish in
+/// every frame from the configured direction, at camera_distance_for(…, the first frame's extent)
+/// (with camera_distance > 0, further back if the box's bounding sphere would not fit the picture).
+Camera fixed_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& settings,
+                    const geometry::Mesh& first);
 
 /// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,
 /// structural noise, Perlin noise, compression noise, all noises; columns expanded, contracted.

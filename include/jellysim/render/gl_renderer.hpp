@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "jellysim/geometry/mesh.hpp"
 #include "jellysim/render/image.hpp"
@@ -32,7 +33,12 @@ struct DirectionalLight {
   std::array<double, 3> colour{1.0, 1.0, 1.0};
 };
 
+/// What is behind the jellyfish: the water gradient, one colour, or nothing (alpha 0).
+enum class Background { water, solid, transparent };
+
 struct RenderStyle {
+  Background background = Background::water;
+  std::array<double, 3> background_colour{0.00, 0.05, 0.13};  ///< Background::solid (linear RGB)
   std::array<double, 3> water_top{0.10, 0.42, 0.56};     ///< background near the surface (linear RGB)
   std::array<double, 3> water_bottom{0.00, 0.05, 0.13};  ///< background in the depth
   bool light_shafts = true;                              ///< soft rays from above in the background
@@ -44,6 +50,15 @@ struct RenderStyle {
   double specular = 0.45;
   double shininess = 40.0;
   double rim = 0.55;  ///< extra opacity and brightness at grazing angles (translucent look)
+  std::array<double, 3> rim_colour{0.45, 0.65, 0.75};  ///< the rim's added light (linear RGB)
+  /// The umbrella's tissue: the light from behind it that its coverage lets through is multiplied by
+  /// transmission × umbrella_rgb^(d / attenuation_distance_m) (Beer–Lambert with the glTF volume
+  /// extension's attenuation colour), d = ½ tissue_thickness_m / |n·v| per surface crossed (a wall
+  /// of the shell is crossed through two surfaces). 1 and an infinite distance: clear tissue.
+  double transmission = 1.0;
+  double attenuation_distance_m = 1.0;
+  double tissue_thickness_m = 0.0;
+  /// lights[0]: the key light (render.key_light_*), lights[1]: a dim blue fill from below.
   std::array<DirectionalLight, 2> lights{DirectionalLight{{0.2, 1.0, 0.6}, {0.95, 0.98, 1.0}},
                                          DirectionalLight{{-0.6, -0.3, 0.4}, {0.25, 0.35, 0.45}}};
   /// Light at the vertices and interpolate (Gouraud) instead of per pixel, for interactive use:
@@ -51,6 +66,15 @@ struct RenderStyle {
   /// highlights and the rim are a little softer (docs/rendering.md, "Interactive rendering").
   bool per_vertex_lighting = false;
 };
+
+/// Depth and screen-space velocity per pixel, top row first (for OpenEXR passes).
+struct FramePasses {
+  int width = 0, height = 0;
+  std::vector<float> depth_m;     ///< width × height
+  std::vector<float> velocity_px; ///< width × height × 2: (x right, y up) per pixel
+};
+/// The depth pass's value where no surface is (Blender's convention for its Z pass).
+constexpr float kBackgroundDepth = 1.0e10f;
 
 /// Whether an offscreen OpenGL 3.3 context can be created here; `why` gets the reason if not.
 bool offscreen_gl_available(std::string* why);
@@ -81,6 +105,16 @@ class OffscreenRenderer {
   /// Resolves the multisampled framebuffer and reads the last drawn frame into `image` (top row
   /// first), reusing its buffer when it has the renderer's size.
   void read_back(RgbImage& image);
+  /// The same with alpha (straight, not premultiplied: PNG's convention); a transparent background
+  /// reads as alpha 0, the water and a solid colour as 255.
+  void read_back(RgbaImage& image);
+  /// Draws the data passes of `mesh` seen by `camera` (opaque, depth-tested, single sample) and
+  /// reads them into `passes`: per pixel the depth (m from the eye along the view axis; background
+  /// kBackgroundDepth) and the screen-space velocity (pixels per frame, x right, y up) from where
+  /// each vertex was at the previous frame, `previous_positions` (one per vertex of `mesh`) seen by
+  /// `previous_camera`. Leaves the beauty framebuffer as it was.
+  void draw_passes(const geometry::Mesh& mesh, const std::vector<geometry::Vec3>& previous_positions,
+                   const Camera& camera, const Camera& previous_camera, FramePasses& passes);
   /// Waits until the frame drawn so far is complete (software rendering runs behind the calls).
   void finish();
 

@@ -25,6 +25,19 @@ struct RgbImage {
   void blend(int x, int y, Rgb c, double a);
 };
 
+/// Row-major, top row first, 4 bytes per pixel: R, G, B and straight (not premultiplied) alpha.
+struct RgbaImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> pixels;
+  std::array<std::uint8_t, 4> at(int x, int y) const;
+};
+
+/// The bytes of an RGBA PNG file of the image (libpng); throws RunError when libpng fails.
+std::string png_bytes(const RgbaImage& image);
+/// Reads an 8-bit PNG with its alpha (255 where the file has none); InputError when unreadable.
+RgbaImage read_png_rgba(const std::filesystem::path& path);
+
 /// The bytes of a PNG file of the image (libpng); throws RunError when libpng fails.
 std::string png_bytes(const RgbImage& image);
 /// Writes png_bytes to a file (io::write_file); throws RunError when it cannot.

@@ -21,7 +21,7 @@ enum class Type {
   choice,    ///< one of `choices`
   vec2,      ///< [x, y], each within `range`
   integers,  ///< `length` integers (0: any non-empty count), each within `range`
-  numbers,   ///< an array of numbers (possibly empty), each within `range`
+  numbers,   ///< `length` numbers (0: any count, possibly none), each within `range`
   choices,   ///< `length` strings (0: any non-empty count), each one of `choices`
   tables,    ///< an array of tables (e.g. [[objects]]), validated by the scene's reader
 };
@@ -41,7 +41,7 @@ struct Parameter {
   std::string unit;         ///< SI unit ("m", "Hz", "m²/s"); empty: dimensionless or not a number
   config::Range range{};        ///< numbers, integers, vec2 and integers' elements
   std::vector<std::string> choices{};  ///< choice and choices
-  int length = 0;           ///< integers and choices: the required count (0: any)
+  int length = 0;           ///< integers, numbers and choices: the required count (0: any)
   std::string description;  ///< one line
   Slider slider{};          ///< for parameters the viewer changes live
 };
@@ -55,6 +55,8 @@ Parameter boolean(std::string key, std::string value, std::string description);
 /// `value` without quotes.
 Parameter choice(std::string key, std::string value, std::vector<std::string> choices, std::string description);
 Parameter vec2(std::string key, std::string value, std::string unit, config::Range range, std::string description);
+/// [x, y, z] or [r, g, b]: three numbers, each within `range` (Type::numbers of length 3).
+Parameter vec3(std::string key, std::string value, std::string unit, config::Range range, std::string description);
 }  // namespace param
 
 /// A scene kind's parameters, in the order the scene file lists them; tables ([tank], …) follow
