@@ -19,15 +19,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
                      "of type \"jellyfish\"");
   render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
   pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
-  // ---- The look of the exported .glb/.usda (issue 39) -------------------------------------------
-  // io::ExportLook: the materials of jellyfish.glb and jellyfish.usda. export_look copies the
-  // renderer's colours and render.umbrella_opacity / render.tentacle_opacity from the style.
-  // MERGE: fill the rest from the [render] look keys here, e.g.
-  //   pipeline.look.transmission = <render.transmission>;
-  //   pipeline.look.attenuation_distance_m = <render.attenuation_distance>;
-  // (render.bell_color and render.tentacle_color arrive through the style's umbrella/tentacles RGB.)
+  // The materials of jellyfish.glb and jellyfish.usda are the renderer's look: colours, opacities,
+  // render.transmission and render.attenuation_distance (docs/rendering.md).
   pipeline.look = render::export_look(pipeline.style);
-  // -------------------------------------------------------------------------------------------------
   options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
     // With checkpoints, the simulation's end stays checkpointed until the animation is whole.

@@ -390,6 +390,8 @@ io::ExportLook export_look(const RenderStyle& style) {
   look.tentacle_opacity = style.tentacles[3];
   look.obstacle_rgba = style.obstacles;
   look.snow_rgba = style.snow;
+  look.transmission = style.transmission;  // render.transmission, render.attenuation_distance
+  look.attenuation_distance_m = style.attenuation_distance_m;
   return look;
 }
 

@@ -43,6 +43,23 @@ Vec3 rotate(const std::array<double, 4>& q, Vec3 v) {
   return 2.0 * geometry::dot(u, v) * u + (q[3] * q[3] - geometry::dot(u, u)) * v + 2.0 * q[3] * geometry::cross(u, v);
 }
 
+// The .glb/.usda materials are the renderer's look: colours, opacities and the tissue's
+// transmission and attenuation distance (render.transmission, render.attenuation_distance).
+TEST(AnimationExports, TheExportedMaterialsCarryTheRenderersLook) {
+  RenderStyle style;
+  style.umbrella = {0.2, 0.4, 0.6, 0.8};
+  style.tentacles = {0.9, 0.1, 0.3, 0.5};
+  style.transmission = 0.25;
+  style.attenuation_distance_m = 0.004;
+  const io::ExportLook look = export_look(style);
+  EXPECT_EQ(look.bell_color[1], 0.4);
+  EXPECT_EQ(look.umbrella_opacity, 0.8);
+  EXPECT_EQ(look.tentacle_color[0], 0.9);
+  EXPECT_EQ(look.tentacle_opacity, 0.5);
+  EXPECT_EQ(look.transmission, 0.25);
+  EXPECT_EQ(look.attenuation_distance_m, 0.004);
+}
+
 TEST(AnimationExports, TheExportedCameraIsTheRenderersAtEveryFrame) {
   PipelineSettings s;
   s.camera = "follow";
