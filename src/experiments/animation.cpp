@@ -18,7 +18,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
                      "of type \"jellyfish\"");
   render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
-  pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
+  pipeline.fps = settings.frames_per_second > 0.0 ? settings.frames_per_second
+                                                  : 1.0 / settings.frame_interval_s;  // the video plays in real time
   options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
   return [settings, options, pipeline, ctx](const io::OutputDir& out) {
     // With checkpoints, the simulation's end stays checkpointed until the animation is whole.
