@@ -600,7 +600,7 @@ std::function<int()> define_scene_command(CLI::App& cmd, const std::string& comm
   cmd.add_option("scene", s->scene_path, scene_help)->check(CLI::ExistingFile);
   add_run_options(cmd, s->options, default_out, set_example);
   cmd.add_option("--fps", s->fps,
-                 "Frames per second, (0, 1000]: frame k at k / N s exactly, e.g. 24 (same as --set output.fps=N; "
+                 "Frames per second, (0, 1000]: frame k at k / N s exactly, e.g. 24 (the scene key output.fps; "
                  "not with output.frame_interval)")
       ->type_name("N")
       ->check(finite_range(0.0, 1000.0, true));
