@@ -17,13 +17,11 @@ std::atomic<long> Simulation::live_{0};
 
 namespace {
 
-/// simulate's frame tolerance for a run of this duration (SwimSimulation::run).
-double frame_tolerance(double duration_s) { return 1e-12 * std::max(1.0, duration_s); }
-
-/// simulate's clock (frame n at n·interval, ending on the frame nearest the duration) for a run to
-/// duration_s, with the frames recorded so far counted as emitted.
-sim::FrameClock simulate_clock(double interval_s, double duration_s, std::int64_t frames_emitted) {
-  sim::FrameClock clock(interval_s, duration_s, frame_tolerance(duration_s), sim::FrameClock::Ending::nearest_frame);
+/// simulate's clock (SwimSettings::frame_clock: frame n at n·interval, or n / output.fps, ending on
+/// the frame nearest the duration, at its grid time) for a run to duration_s, with the frames
+/// recorded so far counted as emitted.
+sim::FrameClock simulate_clock(const jellyfish::SwimSettings& settings, double duration_s, std::int64_t frames_emitted) {
+  sim::FrameClock clock = settings.frame_clock(duration_s);
   for (std::int64_t k = 0; k < frames_emitted; ++k) clock.frame_emitted();
   return clock;
 }
@@ -75,7 +73,7 @@ void Simulation::step() {
   // One step toward the next frame on simulate's clock, the frame recorded when it is due.
   const double interval = scene_.settings.frame_interval_s;
   const sim::FrameClock clock =
-      simulate_clock(interval, static_cast<double>(frames_emitted_) * interval, frames_emitted_);
+      simulate_clock(scene_.settings, static_cast<double>(frames_emitted_) * interval, frames_emitted_);
   if (std::string failure = step_toward(clock.target()); !failure.empty()) throw RunError(failure);
   if (clock.due(sim_->time_s())) record_frame();
 }
@@ -98,7 +96,7 @@ bool Simulation::advance(double seconds, const std::function<bool()>& stop) {
   const auto last = static_cast<std::int64_t>(std::llround(requested / interval));
   if (last < frames_emitted_) return true;
   const double duration = static_cast<double>(last) * interval;
-  sim::FrameClock clock = simulate_clock(interval, duration, frames_emitted_);
+  sim::FrameClock clock = simulate_clock(scene_.settings, duration, frames_emitted_);
   sim::ClockedRun loop;
   loop.time = [this] { return sim_->time_s(); };
   bool stopped = false;

@@ -61,10 +61,12 @@ struct RunOptions {
 };
 
 /// CLI::Range, which lets NaN through (`--checkpoint-every nan` never checkpointed): a number in
-/// [lo, hi].
-CLI::Validator finite_range(double lo, double hi) {
+/// [lo, hi] (open_below: (lo, hi]).
+CLI::Validator finite_range(double lo, double hi, bool open_below = false) {
+  const std::string range = std::string(open_below ? "(" : "[") + js::config::format_number(lo) + ", " +
+                            js::config::format_number(hi) + "]";
   return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
+      [lo, hi, open_below, range](std::string& text) -> std::string {
         double value = 0.0;
         std::size_t end = 0;
         try {
@@ -72,10 +74,10 @@ CLI::Validator finite_range(double lo, double hi) {
         } catch (const std::exception&) {
           end = 0;
         }
-        if (end == text.size() && value >= lo && value <= hi) return {};
-        return "'" + text + "' is not a number in [" + js::config::format_number(lo) + ", " + js::config::format_number(hi) + "]";
+        if (end == text.size() && (open_below ? value > lo : value >= lo) && value <= hi) return {};
+        return "'" + text + "' is not a number in " + range;
       },
-      "NUMBER in [" + js::config::format_number(lo) + ", " + js::config::format_number(hi) + "]", "finite range");
+      "NUMBER in " + range, "finite range");
 }
 
 /// --memory-limit SIZE: the memory budget of the run (core/memory.hpp), set when parsed.
@@ -608,12 +610,20 @@ std::function<int()> define_scene_command(CLI::App& cmd, const std::string& comm
     RunOptions options;
     std::string scene_path;
     CheckpointOptions checkpoints;
+    std::optional<double> fps;
   };
   auto s = std::make_shared<State>();
   cmd.add_option("scene", s->scene_path, scene_help)->check(CLI::ExistingFile);
   add_run_options(cmd, s->options, default_out, set_example);
+  cmd.add_option("--fps", s->fps,
+                 "Frames per second, (0, 1000]: frame k at k / N s exactly, e.g. 24 (the scene key output.fps; "
+                 "not with output.frame_interval)")
+      ->type_name("N")
+      ->check(finite_range(0.0, 1000.0, true));
   add_checkpoint_options(cmd, s->checkpoints, checkpoint_more);
+  cmd.get_option("--fps")->excludes("--resume");
   return [s, command] {
+    if (s->fps) s->options.sets.push_back("output.fps=" + js::io::format_double(*s->fps));  // in checkpoints as a --set
     if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options);
     if (s->checkpoints.every > 0)
       return run_checkpointed_simulation(command, s->scene_path, s->options, s->checkpoints.every);

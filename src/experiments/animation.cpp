@@ -18,7 +18,8 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
                      "of type \"jellyfish\"");
   render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
-  pipeline.fps = 1.0 / settings.frame_interval_s;  // the video plays in real time
+  pipeline.fps = settings.frames_per_second > 0.0 ? settings.frames_per_second
+                                                  : 1.0 / settings.frame_interval_s;  // the video plays in real time
   // The materials of jellyfish.glb and jellyfish.usda are the renderer's look: colours, opacities,
   // render.transmission and render.attenuation_distance (docs/rendering.md).
   pipeline.look = render::export_look(pipeline.style);

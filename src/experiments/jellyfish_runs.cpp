@@ -464,6 +464,12 @@ void add_run_figures(nlohmann::ordered_json& j, const jellyfish::SwimSettings& s
   j["largest_step"] = rec.stats.largest_step_s;
   j["krylov_iterations"] = rec.stats.krylov_iterations;
   j["frames"] = rec.frame_times.size();
+  // The frame grid (docs/rendering.md, "Frame rate"): the run ends on the frame nearest the duration
+  // asked for, at that frame's grid time.
+  j["fps"] = settings.frames_per_second > 0.0 ? settings.frames_per_second : 1.0 / settings.frame_interval_s;
+  j["frame_interval"] = settings.frame_interval_s;
+  j["duration"] = settings.duration_s;
+  j["duration_rounded_to_frames"] = settings.frame_clock(settings.duration_s).end_time();
   j["markers"] = rec.frames.empty() ? 0 : rec.frames.front().umbrella.size();
   j["coupling"] = std::string(coupling::to_string(settings.coupling.scheme));
   j["fluid_solver"] = settings.tank.solver;

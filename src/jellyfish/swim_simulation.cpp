@@ -105,6 +105,13 @@ std::string mirror_symmetry_problem(const SwimSettings& settings) {
   return mirror_body_problem(settings, body, first_point, partners, jellyfish_partners);
 }
 
+sim::FrameClock SwimSettings::frame_clock(double duration) const {
+  const double tolerance = 1e-12 * std::max(1.0, duration);
+  return frames_per_second > 0.0
+             ? sim::FrameClock::at_rate(frames_per_second, duration, tolerance, sim::FrameClock::Ending::nearest_frame)
+             : sim::FrameClock(frame_interval_s, duration, tolerance, sim::FrameClock::Ending::nearest_frame);
+}
+
 const JellyfishSpec& SwimSettings::jellyfish() const {
   if (school.empty()) throw std::logic_error("the scene has no jellyfish");
   return school.front();
@@ -436,8 +443,7 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   run_start_ = std::chrono::steady_clock::now();
   SwimRunStats stats;
   const double duration = settings_.duration_s;
-  sim::FrameClock clock(settings_.frame_interval_s, duration, 1e-12 * std::max(1.0, duration),
-                        sim::FrameClock::Ending::nearest_frame);
+  sim::FrameClock clock = settings_.frame_clock(duration);
   for (std::int64_t k = 0; k < frames_recorded; ++k) clock.frame_emitted();
   sim::ClockedRun loop;
   loop.time = [this] { return time_s(); };

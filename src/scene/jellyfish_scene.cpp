@@ -217,6 +217,9 @@ std::vector<Parameter> coupling_and_output_parameters() {
       number("output.frame_interval", "0.03333333333333333", "s", kPositive,
              "time between recorded frames, at most the duration and at least coupling.min_dt; "
              "at most 10⁶ frames per run"),
+      number("output.fps", "0.0", "1/s", Range::closed(0.0, 1000.0),
+             "frames per second instead of output.frame_interval (not both): frame k at k / fps exactly, e.g. 24; "
+             "0: output.frame_interval. The run ends on the frame nearest the duration, at its grid time"),
       boolean("output.pictures", "true", "a 2D picture per frame (frames/slice_NNNN.png)"),
       integer("output.picture_every", "1", 1, 1000000, "draw every n-th frame"),
       choice("output.picture_quantity", "vorticity", {"vorticity", "speed"}, "what the pictures colour"),
@@ -460,6 +463,27 @@ coupling::CouplingSettings read_coupling(const Reader& r, double frame_interval_
   return k;
 }
 
+/// output.frame_interval, or output.fps (frame k at k / fps): one of the two. The interval given
+/// differs from the table's default when it was named (a scene naming the default itself is not
+/// told apart from one leaving it out).
+void read_frame_rate(const Reader& r, jellyfish::SwimSettings& s) {
+  s.frame_interval_s = r.number("output.frame_interval");
+  const double fps = r.number("output.fps");
+  if (fps == 0.0) return;
+  const double default_interval =
+      config::Config::parse("x = " + r.table().at("output.frame_interval").value, "default").number("x");
+  if (s.frame_interval_s != default_interval)
+    throw InputError("fields 'output.fps' = " + config::format_number(fps) + " and 'output.frame_interval' = " +
+                     config::format_number(s.frame_interval_s) + " both give the frame rate: give one of them " +
+                     "(output.fps in (0, 1000] frames per second, or output.frame_interval in seconds)");
+  if (fps * s.duration_s < 1.0)
+    throw InputError("field 'output.fps' = " + config::format_number(fps) + " is out of range: at least one frame " +
+                     "after the start, fps in [1 / duration = " + config::format_number(1.0 / s.duration_s) +
+                     ", 1000] (or 0: output.frame_interval)");
+  s.frames_per_second = fps;
+  s.frame_interval_s = 1.0 / fps;
+}
+
 }  // namespace
 
 jellyfish::SwimSettings read_swim_settings(const config::Config& c) {
@@ -467,7 +491,7 @@ jellyfish::SwimSettings read_swim_settings(const config::Config& c) {
   r.validate_all();
   jellyfish::SwimSettings s;
   s.duration_s = r.number("duration");
-  s.frame_interval_s = r.number("output.frame_interval");
+  read_frame_rate(r, s);
   if (s.frame_interval_s > s.duration_s)
     throw InputError("field 'output.frame_interval' = " + config::format_number(s.frame_interval_s) +
                      " is out of range (0, duration = " + config::format_number(s.duration_s) + "]");

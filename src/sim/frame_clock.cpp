@@ -11,13 +11,27 @@
 namespace jellysim::sim {
 
 FrameClock::FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending, double end_tolerance_s)
+    : FrameClock(interval_s, 0.0, duration_s, tolerance_s, ending, end_tolerance_s) {}
+
+FrameClock FrameClock::at_rate(double frames_per_second, double duration_s, double tolerance_s, Ending ending,
+                               double end_tolerance_s) {
+  if (!(frames_per_second > 0.0) || !std::isfinite(frames_per_second))
+    throw std::invalid_argument("frame rate " + std::to_string(frames_per_second) + " /s is not a positive number");
+  return FrameClock(1.0 / frames_per_second, frames_per_second, duration_s, tolerance_s, ending, end_tolerance_s);
+}
+
+FrameClock::FrameClock(double interval_s, double rate_hz, double duration_s, double tolerance_s, Ending ending,
+                       double end_tolerance_s)
     : interval_(interval_s),
+      rate_(rate_hz),
       duration_(duration_s),
       tolerance_(tolerance_s),
       end_tolerance_(end_tolerance_s < 0.0 ? tolerance_s : end_tolerance_s),
+      cap_(duration_s),
       end_(duration_s) {
   if (interval_ <= 0.0) return;
-  if (!(duration_ / interval_ <= 4503599627370496.0))  // 2^52: frame indices stay exact
+  const double frames = rate_ > 0.0 ? duration_ * rate_ : duration_ / interval_;
+  if (!(frames <= 4503599627370496.0))  // 2^52: frame indices stay exact
     throw std::invalid_argument("frame interval " + std::to_string(interval_) + " s is too small for a duration of " +
                                 std::to_string(duration_) + " s");
   switch (ending) {
@@ -27,16 +41,20 @@ FrameClock::FrameClock(double interval_s, double duration_s, double tolerance_s,
     case Ending::whole_frames:
       last_ = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((duration_ + tolerance_) / interval_)));
       break;
-    case Ending::nearest_frame:
-      last_ = std::max<std::int64_t>(1, std::llround(duration_ / interval_));
-      end_ = frame_time(last_);
+    case Ending::nearest_frame:  // the duration rounded to whole frames: the last frame on the grid
+      last_ = std::max<std::int64_t>(1, std::llround(frames));
+      cap_ = end_ = grid_time(last_);
       break;
   }
 }
 
+double FrameClock::grid_time(std::int64_t n) const {
+  return rate_ > 0.0 ? static_cast<double>(n) / rate_ : static_cast<double>(n) * interval_;
+}
+
 double FrameClock::frame_time(std::int64_t n) const {
   if (interval_ <= 0.0) return n == 0 ? 0.0 : duration_;
-  return std::min(static_cast<double>(n) * interval_, duration_);
+  return std::min(grid_time(n), cap_);
 }
 
 double FrameClock::last_frame_time() const {
@@ -53,7 +71,7 @@ bool FrameClock::finished(double t) const {
 }
 
 double FrameClock::scheduled_frame_time() const {
-  return interval_ <= 0.0 ? std::numeric_limits<double>::infinity() : static_cast<double>(next_) * interval_;
+  return interval_ <= 0.0 ? std::numeric_limits<double>::infinity() : grid_time(next_);
 }
 
 double FrameClock::target() const {

@@ -466,3 +466,67 @@ TEST(JellyfishCli, BadIb2dFilesAreRefusedNamingFileAndLine) {
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(work);
 }
+
+namespace {
+
+/// The distinct times of metrics.csv's rows (its first column), in order.
+std::vector<double> metric_times(const fs::path& dir) {
+  std::istringstream text(slurp(dir / "metrics.csv"));
+  std::string line;
+  std::getline(text, line);
+  std::vector<double> times;
+  while (std::getline(text, line)) times.push_back(std::strtod(line.c_str(), nullptr));
+  return times;
+}
+
+}  // namespace
+
+TEST(JellyfishCli, FpsPutsFrameKAtKOverNAndTheLastFrameOnTheGrid) {
+  const std::string lean = " --quiet --set tank.cells=[32,64] --set output.pictures=false --set output.vtk=false --out ";
+  // 24 frames a second for 0.15 s (3.6 frames): frames 0 … 4, frame k at k / 24 exactly, the run
+  // rounded to 4 whole frames (1/6 s), not stopped at 0.15 s between two frames.
+  const fs::path dir = fresh("fps");
+  Result r = run_cli("simulate --fps 24 --duration 0.15" + lean + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<double> t = metric_times(dir);
+  ASSERT_EQ(t.size(), 5u);
+  for (std::size_t k = 0; k < t.size(); ++k) EXPECT_EQ(t[k], static_cast<double>(k) / 24.0) << k;
+  auto s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(s["fps"].get<double>(), 24.0);
+  EXPECT_EQ(s["frames"].get<int>(), 5);
+  EXPECT_EQ(s["duration"].get<double>(), 0.15);
+  EXPECT_EQ(s["duration_rounded_to_frames"].get<double>(), 4.0 / 24.0);
+  EXPECT_EQ(s["simulated_seconds"].get<double>(), 4.0 / 24.0);
+  // The scene key does the same; with output.frame_interval the last frame is on its grid too
+  // (0.15 s of 0.04 s frames: 3.75 → 4 frames, the last at 0.16 s).
+  r = run_cli("simulate --set output.fps=24 --duration 0.15" + lean + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(metric_times(dir), t);
+  r = run_cli("simulate --set output.frame_interval=0.04 --duration 0.15" + lean + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(metric_times(dir).back(), 4 * 0.04);
+  s = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(s["duration_rounded_to_frames"].get<double>(), 4 * 0.04);
+  fs::remove_all(dir);
+}
+
+TEST(JellyfishCli, BadFrameRatesAreRefusedNamingTheOption) {
+  const fs::path dir = fresh("bad_fps");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"simulate --fps 0", "--fps"},
+      {"simulate --fps -24", "--fps"},
+      {"run --fps 1001", "--fps"},
+      {"run --fps nan", "--fps"},
+      {"simulate --set output.fps=-1", "output.fps"},
+      {"simulate --set output.fps=2000", "output.fps"},
+      {"simulate --duration 0.1 --set output.fps=5", "output.fps"},  // no frame after the start
+      {"run --fps 24 --set output.frame_interval=0.05", "output.frame_interval"},
+  };
+  for (const auto& [args, option] : cases) {
+    const Result r = run_cli(args + " --quiet --out " + dir.string());
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << args << ": " << r.output;
+    EXPECT_FALSE(fs::exists(dir / "summary.json")) << args;
+  }
+  fs::remove_all(dir);
+}

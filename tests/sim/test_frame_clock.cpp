@@ -72,15 +72,45 @@ TEST(FrameClock, ARunEndsAsItsRunnerAlwaysEnded) {
   const Recorded whole = run_clock(FrameClock(0.1, 0.25, 1e-12, FrameClock::Ending::whole_frames), 0.07);
   expect_times(whole.frames, {0.0, 0.1, 0.2});
   EXPECT_DOUBLE_EQ(whole.end, 0.25);
-  // Nearest frame: 2.5 intervals rounds to 3, capped at the duration; 0.24 s rounds to 2 (0.2 s).
+  // Nearest frame: the duration rounded to whole frames, the last frame on the grid (issue 39):
+  // 2.5 intervals round to 3 (0.3 s, past the duration), 0.24 s to 2 (0.2 s).
   const Recorded up = run_clock(FrameClock(0.1, 0.25, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
-  expect_times(up.frames, {0.0, 0.1, 0.2, 0.25});
+  expect_times(up.frames, {0.0, 0.1, 0.2, 0.3});
+  EXPECT_EQ(up.end, 3 * 0.1);
   const Recorded down = run_clock(FrameClock(0.1, 0.24, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
   expect_times(down.frames, {0.0, 0.1, 0.2});
   EXPECT_NEAR(down.end, 0.2, 1e-15);
-  // At least one frame after the start, even for a duration under half an interval.
+  // At least one frame after the start, even for a duration under half an interval: on the grid.
   const Recorded shortest = run_clock(FrameClock(0.1, 0.02, 1e-12, FrameClock::Ending::nearest_frame), 0.07);
-  expect_times(shortest.frames, {0.0, 0.02});
+  expect_times(shortest.frames, {0.0, 0.1});
+}
+
+TEST(FrameClock, TheMainJobsLastFrameIsOnTheFrameGrid) {
+  // 3 cycles at 0.7 Hz = 128.57 frames of 1/30 s: 129 frames after the start, the last at
+  // 129/30 = 4.3 s (was 4.2857 s, off the grid: Blender's action ended at frame 128.57).
+  const FrameClock clock(1.0 / 30.0, 3.0 / 0.7, 1e-12, FrameClock::Ending::nearest_frame);
+  EXPECT_EQ(clock.end_time(), 129.0 * (1.0 / 30.0));
+  EXPECT_NEAR(clock.end_time(), 4.3, 1e-15);
+  const Recorded r = run_clock(clock, 0.011);
+  ASSERT_EQ(r.frames.size(), 130u);
+  EXPECT_EQ(r.frames.back(), clock.end_time());
+}
+
+TEST(FrameClock, AtRateFrameKIsKOverTheRate) {
+  // 24 frames a second: frame k at k / 24 exactly (1/24 is not a double: k · (1/24) differs in
+  // the last bit for some k), the last frame on the grid.
+  const FrameClock clock = FrameClock::at_rate(24.0, 10.01, 1e-12, FrameClock::Ending::nearest_frame);
+  int differ = 0;
+  for (std::int64_t k = 0; k <= 240; ++k) {
+    EXPECT_EQ(clock.frame_time(k), static_cast<double>(k) / 24.0);
+    differ += static_cast<double>(k) * (1.0 / 24.0) != static_cast<double>(k) / 24.0;
+  }
+  EXPECT_GT(differ, 0);  // the test tells the two apart
+  EXPECT_EQ(clock.end_time(), 240.0 / 24.0);
+  const Recorded r = run_clock(clock, 0.013);
+  ASSERT_EQ(r.frames.size(), 241u);
+  for (std::size_t k = 0; k < r.frames.size(); ++k) EXPECT_EQ(r.frames[k], static_cast<double>(k) / 24.0);
+  EXPECT_THROW(FrameClock::at_rate(0.0, 1.0, 1e-12), std::invalid_argument);
 }
 
 TEST(FrameClock, FrameTimesDoNotDrift) {

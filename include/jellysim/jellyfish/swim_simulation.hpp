@@ -19,6 +19,7 @@
 #include "jellysim/jellyfish/ib2d_object.hpp"
 #include "jellysim/jellyfish/jellyfish.hpp"
 #include "jellysim/jellyfish/obstacle.hpp"
+#include "jellysim/sim/frame_clock.hpp"
 #include "jellysim/sim/time_stepping.hpp"
 
 namespace jellysim::jellyfish {
@@ -33,7 +34,13 @@ struct SwimSettings {
   coupling::StabilityLimits limits;
   double duration_s = 5.0 / 0.7;  ///< five contraction cycles at 0.7 Hz
   double frame_interval_s = 1.0 / 30.0;
+  /// Frames a second (output.fps), > 0: frame k at k / frames_per_second exactly, and
+  /// frame_interval_s is its reciprocal; 0: frames at k·frame_interval_s.
+  double frames_per_second = 0.0;
 
+  /// The run's frame clock to `duration_s` (simulate's: the last frame is the one nearest the
+  /// duration, at its grid time).
+  sim::FrameClock frame_clock(double duration_s) const;
   /// The first jellyfish (the one metrics.csv describes); throws when there is none.
   const JellyfishSpec& jellyfish() const;
 };

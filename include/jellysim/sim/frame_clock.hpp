@@ -17,8 +17,8 @@ class FrameClock {
   enum class Ending {
     at_duration,    ///< run to the duration and record a frame there (the driven cavity)
     whole_frames,   ///< run to the duration; frames only at whole intervals (ODE and SPH scenes)
-    nearest_frame,  ///< stop at the frame nearest the duration (at most the duration; at least
-                    ///< one frame): the jellyfish tank
+    nearest_frame,  ///< stop at the frame nearest the duration, at that frame's grid time (the
+                    ///< duration rounded to whole frames; at least one frame): the jellyfish tank
   };
   /// interval_s <= 0: no frames but the first (and, on an early stop, the last). tolerance_s: a
   /// time within it of a frame time counts as on it (guards against round-off); end_tolerance_s
@@ -26,12 +26,18 @@ class FrameClock {
   /// the duration holds more than 2^52 intervals.
   FrameClock(double interval_s, double duration_s, double tolerance_s, Ending ending = Ending::at_duration,
              double end_tolerance_s = -1.0);
+  /// A clock of `frames_per_second` frames a second (> 0): frame n at n / frames_per_second,
+  /// computed as that quotient (1/24 s frames are exactly the 1/24 grid, not a sum or a product of
+  /// a rounded interval).
+  static FrameClock at_rate(double frames_per_second, double duration_s, double tolerance_s,
+                            Ending ending = Ending::at_duration, double end_tolerance_s = -1.0);
 
   double duration() const { return duration_; }
   /// Where the run ends: the duration, or with Ending::nearest_frame the last frame's time.
   double end_time() const { return end_; }
   double tolerance() const { return tolerance_; }
-  /// Time of frame n: n·interval, capped at the duration.
+  /// Time of frame n: n·interval (or n / rate), capped at the duration (Ending::nearest_frame: at
+  /// the last frame's grid time).
   double frame_time(std::int64_t n) const;
   /// The frames emitted so far (the next one is frame frames_emitted()).
   std::int64_t frames_emitted() const { return next_; }
@@ -48,7 +54,12 @@ class FrameClock {
   void frame_emitted() { ++next_; }
 
  private:
-  double interval_, duration_, tolerance_, end_tolerance_;
+  FrameClock(double interval_s, double rate_hz, double duration_s, double tolerance_s, Ending ending,
+             double end_tolerance_s);
+  double grid_time(std::int64_t n) const;
+
+  double interval_, rate_, duration_, tolerance_, end_tolerance_;
+  double cap_ = 0.0;       ///< no frame time beyond it
   std::int64_t last_ = 0;  ///< index of the last frame
   double end_ = 0.0;
   std::int64_t next_ = 0;
