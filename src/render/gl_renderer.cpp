@@ -135,42 +135,10 @@ void main() {
   colour = texelFetch(image, ivec2(gl_FragCoord.xy), 0);
 })";
 
-// Three-term lighting (ambient + Lambert diffuse + Blinn–Phong specular) with directional lights,
-// plus a view-dependent rim that makes grazing parts more opaque and brighter; gamma-encoded.
-// n: unit normal facing the viewer's side, v: unit direction to the eye. `through` is what the
-// surface lets through of the light behind it, per channel: its uncovered part (1 − α) times the
-// tissue's transmission and Beer–Lambert absorption over the path d = ½ thickness / |n·v| (1 and
-// no absorption for every part but the umbrella). Blended as colour·α + behind·through (dual
+// The meshes' lighting (render::kLightingGlsl, gl_program.hpp: ambient, two lights, a rim; `through`
+// the tissue's transmission and Beer–Lambert absorption). Blended as colour·α + behind·through (dual
 // source), which is the usual "over" when through = 1 − α.
-constexpr const char* kLighting = R"(
-uniform vec4 base;
-uniform vec3 eye;
-uniform vec3 light_direction[2];
-uniform vec3 light_colour[2];
-uniform float ambient;
-uniform float specular;
-uniform float shininess;
-uniform float rim;
-uniform vec3 rim_colour;
-uniform float transmission;
-uniform vec3 absorption;
-uniform float half_thickness;
-vec3 through(vec3 n, vec3 v, float alpha) {
-  float d = half_thickness / max(abs(dot(n, v)), 0.1);
-  return (1.0 - alpha) * transmission * exp(-absorption * d);
-}
-vec4 shade(vec3 n, vec3 v) {
-  vec3 c = ambient * base.rgb;
-  for (int i = 0; i < 2; ++i) {
-    vec3 l = normalize(light_direction[i]);
-    vec3 h = normalize(l + v);
-    c += light_colour[i] * (max(dot(n, l), 0.0) * base.rgb + specular * pow(max(dot(n, h), 0.0), shininess));
-  }
-  float grazing = pow(1.0 - abs(dot(n, v)), 2.0);
-  c += rim * grazing * rim_colour;
-  return vec4(pow(max(c, vec3(0.0)), vec3(1.0 / 2.2)), clamp(base.a + rim * grazing, 0.0, 1.0));
-}
-)";
+constexpr const char* kLighting = kLightingGlsl;
 
 // The mesh programs' outputs: premultiplied colour, and what the surface lets through of what is
 // behind it (the second source of the blend, Impl::set_tissue).

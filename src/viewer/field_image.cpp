@@ -92,16 +92,19 @@ FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double ra
     if (std::isfinite(v)) image.max_value = std::max(image.max_value, std::abs(v));
   }
   const double scale = range > 0.0 ? range : std::max(image.max_value, 1e-12);
+  image.range = scale;
   image.rgba.resize(values.size() * 4);
   for (std::size_t k = 0; k < values.size(); ++k) {
-    const double s = std::isfinite(values[k]) ? values[k] / scale : 0.0;
-    const Colour c = shown == FieldShown::speed ? speed_colour(s) : vorticity_colour(s);
-    image.rgba[4 * k + 0] = byte(c[0]);
-    image.rgba[4 * k + 1] = byte(c[1]);
-    image.rgba[4 * k + 2] = byte(c[2]);
+    const std::array<std::uint8_t, 3> c = field_colour(shown, std::isfinite(values[k]) ? values[k] / scale : 0.0);
+    std::copy(c.begin(), c.end(), image.rgba.begin() + static_cast<std::ptrdiff_t>(4 * k));
     image.rgba[4 * k + 3] = 255;
   }
   return image;
+}
+
+std::array<std::uint8_t, 3> field_colour(FieldShown shown, double s) {
+  const Colour c = shown == FieldShown::speed ? speed_colour(s) : vorticity_colour(s);
+  return {byte(c[0]), byte(c[1]), byte(c[2])};
 }
 
 }  // namespace jellysim::viewer

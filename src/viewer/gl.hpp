@@ -36,16 +36,24 @@ class RenderTarget {
   ~RenderTarget();
   RenderTarget(const RenderTarget&) = delete;
   RenderTarget& operator=(const RenderTarget&) = delete;
-  /// (Re)creates the buffers when the size changed; binds the framebuffer and sets the viewport.
+  /// (Re)creates the buffers when the size changed; binds the multisampled framebuffer and sets
+  /// the viewport.
   void bind(int width, int height);
+  /// Resolves the samples into colour_texture() (a box filter over each pixel's samples) and binds
+  /// the default framebuffer.
+  void resolve();
   GLuint colour_texture() const { return colour_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  /// Samples per pixel of the framebuffer drawn into (4, or fewer where the driver has fewer).
+  int samples() const { return samples_; }
 
  private:
   void release();
-  GLuint framebuffer_ = 0, colour_ = 0, depth_ = 0;
-  int width_ = 0, height_ = 0;
+  void make_multisampled();
+  GLuint framebuffer_ = 0, colour_ = 0;                         // the resolved picture
+  GLuint ms_framebuffer_ = 0, ms_colour_ = 0, ms_depth_ = 0;    // the multisampled one drawn into
+  int width_ = 0, height_ = 0, samples_ = 0;
 };
 
 /// Reads the default framebuffer's pixels as RGB8, top row first.

@@ -1,9 +1,13 @@
 #include "mesh_view.hpp"
 
+#include "jellysim/render/gl_program.hpp"
+#include "jellysim/render/gl_renderer.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace jellysim::viewer {
 
@@ -25,25 +29,17 @@ void main() {
 }
 )";
 
-// Three-term lighting, two-sided, with a rim term for the glassy look of the translucent umbrella.
-constexpr const char* kFragmentShader = R"(#version 330 core
+// The offscreen renderer's lighting (render::kLightingGlsl) with its default look
+// (render::RenderStyle): two-sided, the normal turned to the viewer.
+const std::string kFragmentShader = std::string("#version 330 core\n") + render::kLightingGlsl + R"(
 in vec3 world_position;
 in vec3 world_normal;
-uniform vec3 eye;
-uniform vec4 colour;
 out vec4 fragment;
 void main() {
   vec3 n = normalize(world_normal);
   vec3 v = normalize(eye - world_position);
   if (dot(n, v) < 0.0) n = -n;
-  vec3 l = normalize(vec3(0.2, 1.0, 0.6));
-  vec3 h = normalize(l + v);
-  float ambient = 0.30;
-  float diffuse = max(dot(n, l), 0.0);
-  float specular = pow(max(dot(n, h), 0.0), 40.0) * 0.45;
-  float rim = pow(1.0 - max(dot(n, v), 0.0), 2.0) * 0.5;
-  vec3 c = colour.rgb * (ambient + 0.8 * diffuse) + vec3(specular + rim * 0.4);
-  fragment = vec4(c, clamp(colour.a + rim, 0.0, 1.0));
+  fragment = shade(n, v);
 }
 )";
 
@@ -145,13 +141,39 @@ CameraView orbit_view(const geometry::Bounds& bounds, const OrbitCamera& camera,
           eye};
 }
 
+/// The renderer's default look (lights, ambient, specular, rim) as the program's uniforms.
+void set_look_uniforms(GLuint program, const render::RenderStyle& style) {
+  glUseProgram(program);
+  for (int i = 0; i < 2; ++i) {
+    const render::DirectionalLight& light = style.lights[static_cast<std::size_t>(i)];
+    const std::string k = "[" + std::to_string(i) + "]";
+    glUniform3f(glGetUniformLocation(program, ("light_direction" + k).c_str()), static_cast<float>(light.direction.x),
+                static_cast<float>(light.direction.y), static_cast<float>(light.direction.z));
+    glUniform3f(glGetUniformLocation(program, ("light_colour" + k).c_str()), static_cast<float>(light.colour[0]),
+                static_cast<float>(light.colour[1]), static_cast<float>(light.colour[2]));
+  }
+  glUniform1f(glGetUniformLocation(program, "ambient"), static_cast<float>(style.ambient));
+  glUniform1f(glGetUniformLocation(program, "specular"), static_cast<float>(style.specular));
+  glUniform1f(glGetUniformLocation(program, "shininess"), static_cast<float>(style.shininess));
+  glUniform1f(glGetUniformLocation(program, "rim"), static_cast<float>(style.rim));
+  glUniform3f(glGetUniformLocation(program, "rim_colour"), static_cast<float>(style.rim_colour[0]),
+              static_cast<float>(style.rim_colour[1]), static_cast<float>(style.rim_colour[2]));
+  glUseProgram(0);
+}
+
+/// A part's colour from the renderer's style (RGBA, linear).
+std::array<float, 4> rgba_of(const std::array<double, 4>& c) {
+  return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), static_cast<float>(c[3])};
+}
+
 }  // namespace
 
 MeshView::MeshView() {
-  program_ = gl::make_program(kVertexShader, kFragmentShader);
+  program_ = gl::make_program(kVertexShader, kFragmentShader.c_str());
   u_view_projection_ = glGetUniformLocation(program_, "view_projection");
   u_eye_ = glGetUniformLocation(program_, "eye");
-  u_colour_ = glGetUniformLocation(program_, "colour");
+  u_colour_ = glGetUniformLocation(program_, "base");
+  set_look_uniforms(program_, render::RenderStyle{});
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vertex_buffer_);
   glGenBuffers(1, &index_buffer_);
@@ -212,29 +234,28 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDisable(GL_CULL_FACE);
-  static constexpr float kTentacles[4] = {1.00f, 0.72f, 0.80f, 0.9f};
-  static constexpr float kUmbrella[4] = {0.78f, 0.90f, 1.00f, 0.55f};
-  static constexpr float kObstacles[4] = {0.15f, 0.14f, 0.13f, 1.0f};
-  static constexpr float kSnow[4] = {0.85f, 0.92f, 0.95f, 0.8f};
+  static const render::RenderStyle look;  // the offscreen renderer's default colours
+  static const std::array<float, 4> kTentacles = rgba_of(look.tentacles), kUmbrella = rgba_of(look.umbrella),
+                                    kObstacles = rgba_of(look.obstacles), kSnow = rgba_of(look.snow);
   if (obstacles != nullptr && !obstacles->positions.empty()) {  // opaque, first, writing depth
     upload(*obstacles);
     glDepthMask(GL_TRUE);
-    draw_part(*obstacles, "obstacles", kObstacles);
+    draw_part(*obstacles, "obstacles", kObstacles.data());
   }
   if (snow != nullptr && !snow->positions.empty()) {  // marine snow specks, writing depth
     upload(*snow);
     glDepthMask(GL_TRUE);
-    draw_part(*snow, "snow", kSnow);
+    draw_part(*snow, "snow", kSnow.data());
   }
   for (const geometry::Mesh* mesh : meshes) {  // opaque-ish tentacles first, with depth writes
     upload(*mesh);
     glDepthMask(GL_TRUE);
-    draw_part(*mesh, "tentacles", kTentacles);
+    draw_part(*mesh, "tentacles", kTentacles.data());
     // The tubes are often thinner than a pixel: their edges as lines keep each tentacle a
     // continuous line instead of a dotted one (the filled tube covers them when it is wider).
     glDepthFunc(GL_LEQUAL);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    draw_part(*mesh, "tentacles", kTentacles);
+    draw_part(*mesh, "tentacles", kTentacles.data());
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glDepthFunc(GL_LESS);
     // Then the translucent umbrella over them without depth writes: its back faces, then its
@@ -243,15 +264,15 @@ GLuint MeshView::draw(const std::vector<const geometry::Mesh*>& meshes, const Or
     glDepthMask(GL_FALSE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
-    draw_part(*mesh, "umbrella", kUmbrella);
+    draw_part(*mesh, "umbrella", kUmbrella.data());
     glCullFace(GL_BACK);
-    draw_part(*mesh, "umbrella", kUmbrella);
+    draw_part(*mesh, "umbrella", kUmbrella.data());
     glDisable(GL_CULL_FACE);
   }
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  target_.resolve();
   return target_.colour_texture();
 }
 

@@ -27,6 +27,8 @@ class MeshView {
   /// `obstacles` (part "obstacles", opaque; not framed) drawn first when given.
   GLuint draw(const std::vector<const geometry::Mesh*>& meshes, const OrbitCamera& camera, int width, int height,
               const geometry::Mesh* obstacles = nullptr, const geometry::Mesh* snow = nullptr);
+  /// Samples per pixel the panel is drawn with (0 before the first draw).
+  int samples() const { return target_.samples(); }
 
  private:
   void upload(const geometry::Mesh& mesh);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 #include <span>
 
@@ -56,7 +58,7 @@ void draw_body_springs(const PanelMapping& map, const jellyfish::Jellyfish& j, I
   std::vector<bool> is_hoop(body.linear.size(), false);  // a ring jellyfish's hoops close each ring: not drawn
   for (int s : j.layout().hoop_springs) is_hoop[static_cast<std::size_t>(s)] = true;
   const ImU32 spring = selected ? IM_COL32(255, 255, 255, 255) : IM_COL32(230, 235, 240, 230);
-  const ImU32 muscle = IM_COL32(255, 70, 60, 200);
+  const ImU32 muscle = IM_COL32(kMuscleColour[0], kMuscleColour[1], kMuscleColour[2], 220);
   const std::size_t first = j.first_linear_spring();
   for (std::size_t s = first; s < first + j.linear_spring_count(); ++s) {
     if (is_hoop[s]) continue;
@@ -72,6 +74,40 @@ void draw_cross(ImDrawList* list, Vec2 c, ImU32 colour) {
   const ImVec2 p = im(c);
   list->AddLine(ImVec2(p.x - r, p.y - r), ImVec2(p.x + r, p.y + r), colour, 2.0f);
   list->AddLine(ImVec2(p.x - r, p.y + r), ImVec2(p.x + r, p.y - r), colour, 2.0f);
+}
+
+/// The field's colour bar in the panel's top-right corner: the map from its top value (range, 1/s
+/// or m/s) to its bottom one (−range for vorticity, 0 for speed), labelled, over a dark backing.
+void draw_colour_bar(ImDrawList* list, ImVec2 top_left, ImVec2 bottom_right, FieldShown shown, double range) {
+  const float height = std::min(140.0f, 0.35f * (bottom_right.y - top_left.y));
+  const float x1 = bottom_right.x - 8.0f, x0 = x1 - 10.0f, y0 = top_left.y + 10.0f, y1 = y0 + height;
+  const bool vorticity = shown == FieldShown::vorticity;
+  const std::string unit = vorticity ? " 1/s" : " m/s";
+  const auto label = [&](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%+.3g", v);
+    return (v == 0.0 ? std::string("0") : std::string(text)) + unit;
+  };
+  const float text_w = ImGui::CalcTextSize(label(-range).c_str()).x;
+  list->AddRectFilled(ImVec2(x0 - text_w - 10.0f, y0 - 6.0f), ImVec2(x1 + 4.0f, y1 + 6.0f), IM_COL32(0, 0, 0, 150), 3.0f);
+  constexpr int kSteps = 48;
+  for (int k = 0; k < kSteps; ++k) {  // top: +range
+    const double s_top = 1.0 - static_cast<double>(k) / kSteps, s_bottom = 1.0 - static_cast<double>(k + 1) / kSteps;
+    const auto top = field_colour(shown, vorticity ? 2.0 * s_top - 1.0 : s_top);
+    const auto bottom = field_colour(shown, vorticity ? 2.0 * s_bottom - 1.0 : s_bottom);
+    const float ya = y0 + height * static_cast<float>(k) / kSteps, yb = y0 + height * static_cast<float>(k + 1) / kSteps;
+    const ImU32 a = IM_COL32(top[0], top[1], top[2], 255), b = IM_COL32(bottom[0], bottom[1], bottom[2], 255);
+    list->AddRectFilledMultiColor(ImVec2(x0, ya), ImVec2(x1, yb), a, a, b, b);
+  }
+  const ImU32 white = IM_COL32(235, 235, 235, 255);
+  const float line_h = ImGui::GetTextLineHeight();
+  const auto put = [&](double v, float y) {
+    const std::string text = label(v);
+    list->AddText(ImVec2(x0 - 4.0f - ImGui::CalcTextSize(text.c_str()).x, y - 0.5f * line_h), white, text.c_str());
+  };
+  put(range, y0);
+  put(vorticity ? 0.0 : 0.5 * range, 0.5f * (y0 + y1));
+  put(vorticity ? -range : 0.0, y1);
 }
 
 }  // namespace
@@ -165,7 +201,8 @@ void ScenePanel::draw(const PanelMapping& map, unsigned field_texture, const jel
   if (options.tracers) {
     for (Vec2 p : sim.tracers().positions()) {
       const ImVec2 s = im(map.to_screen(p));
-      list->AddRectFilled(ImVec2(s.x - 1, s.y - 1), ImVec2(s.x + 1, s.y + 1), IM_COL32(255, 255, 255, 150));
+      list->AddRectFilled(ImVec2(s.x - 1, s.y - 1), ImVec2(s.x + 1, s.y + 1),
+                          IM_COL32(kTracerColour[0], kTracerColour[1], kTracerColour[2], 170));
     }
   }
   for (std::size_t k = 0; k < sim.obstacle_count(); ++k) {
@@ -180,6 +217,7 @@ void ScenePanel::draw(const PanelMapping& map, unsigned field_texture, const jel
       draw_cross(list, map.to_screen(*params.jellyfish[i].steer_target_m), IM_COL32(120, 255, 120, 255));
     }
   }
+  if (options.field_range > 0.0) draw_colour_bar(list, top_left, bottom_right, options.field, options.field_range);
   list->PopClipRect();
   list->AddRect(top_left, bottom_right, IM_COL32(200, 200, 200, 255));
 }

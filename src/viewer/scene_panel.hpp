@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "jellysim/jellyfish/swim_simulation.hpp"
+#include "jellysim/viewer/field_image.hpp"
 #include "live_params.hpp"
 #include "platform.hpp"
 
@@ -24,6 +25,8 @@ struct PanelMapping {
 struct SceneDrawOptions {
   bool tracers = true;
   bool springs = true;
+  FieldShown field = FieldShown::vorticity;  ///< the map the colour bar shows
+  double field_range = 0.0;                  ///< its range (FieldImage::range); ≤ 0: no colour bar
 };
 
 /// What the mouse is holding.

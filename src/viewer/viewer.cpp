@@ -432,6 +432,8 @@ void Viewer::draw_views() {
   const double t0 = wall_now();
   const FieldImage image = field_image(sim_->flow(), field_, 0.0);
   field_texture_->upload(image.width, image.height, image.rgba);
+  draw_options_.field = field_;
+  draw_options_.field_range = image.range;
   scene_.draw(map, field_texture_->id(), *sim_, params_, draw_options_);
   const double t1 = wall_now();
   totals_.field_s += t1 - t0;
@@ -612,6 +614,7 @@ void Viewer::write_stats() const {
   s["target_fps"] = options_.target_fps;
   s["min_fps"] = options_.min_fps;
   s["behind_frames"] = totals_.behind_frames;
+  s["msaa_samples"] = mesh_view_ ? mesh_view_->samples() : 0;  // the 3D panel's multisampling
   s["steps_per_frame"] = totals_.frames > 0 ? static_cast<double>(totals_.steps) / totals_.frames : 0.0;
   s["warmup_frames"] = kWarmupFrames;
   const double per_frame_ms = totals_.frames > 0 ? 1000.0 / static_cast<double>(totals_.frames) : 0.0;

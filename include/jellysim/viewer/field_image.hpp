@@ -1,6 +1,7 @@
 #pragma once
 // The fluid as a colour image for the viewer's 2D panel: one pixel per cell, speed on a sequential
 // colour map or vorticity on a diverging one. CPU only (the viewer uploads it as a texture).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -16,7 +17,17 @@ struct FieldImage {
   int height = 0;
   std::vector<std::uint8_t> rgba;
   double max_value = 0.0;  ///< largest |value| of the field (speed m/s or vorticity 1/s)
+  double range = 0.0;      ///< the colour range used: speed 0…range, vorticity −range…range
 };
+
+/// The colour map (RGB8) at s: speed s ∈ [0, 1] (deep water blue → teal → yellow → white),
+/// vorticity s ∈ [−1, 1] (blue, clockwise → dark water → red, counter-clockwise).
+std::array<std::uint8_t, 3> field_colour(FieldShown shown, double s);
+
+/// The tracers' colour in the 2D panel, and the muscle springs': a green and a magenta, far from
+/// every colour of both maps (test FieldImage.OverlayColoursStandApartFromBothMaps).
+inline constexpr std::array<std::uint8_t, 3> kTracerColour{40, 255, 60};
+inline constexpr std::array<std::uint8_t, 3> kMuscleColour{240, 90, 240};
 
 /// Colours the flow. `range` > 0 fixes the colour range (speed 0…range, vorticity −range…range);
 /// ≤ 0 takes the field's own maximum.
