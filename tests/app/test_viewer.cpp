@@ -327,7 +327,7 @@ TEST(Viewer, OptionOutOfRangeIsRejected) {
 // vorticity map from +range at the top to −range at the bottom, in the tank's top-right corner) and
 // the tracers in a green that no colour of the maps comes near. Thesis tank, 1280 × 720: the bar's
 // column x = 458 runs from y = 137 to 276; measured (254, 200, 125) at the top, (8, 15, 36) in the
-// middle, (140, 204, 255) at the bottom; 4 samples per pixel on llvmpipe.
+// middle, (140, 204, 255) at the bottom; 4 samples per pixel on llvmpipe; the outline blended.
 TEST(Viewer, The3DPanelIsMultisampledAndThe2DPanelHasAColourBar) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
   const auto dir = fresh_scratch_dir("viewer_colour_bar");
@@ -346,6 +346,29 @@ TEST(Viewer, The3DPanelIsMultisampledAndThe2DPanelHasAColourBar) {
   EXPECT_LT(off(458, 137, {255, 204, 128}), 15) << "the warm end (+range) at the bar's top";
   EXPECT_LT(off(458, 206, {8, 15, 36}), 15) << "dark water (0) in its middle";
   EXPECT_LT(off(458, 276, {140, 204, 255}), 15) << "the cold end (−range) at its bottom";
+  // Antialiased outline: on rows crossing the bell in the 3D panel (x in [476, 948)), the pixel just
+  // outside its silhouette (the first pixel 60 above the water's brightness) carries more than 8 %
+  // of the step to the bell's brightness in 60 of 154 rows at 4 samples, in 22 of 146 rows drawn
+  // with one sample.
+  const auto brightness = [&](int x, int y) {
+    const auto p = image.at(x, y);
+    return p[0] + p[1] + p[2];
+  };
+  const int water = brightness(480, 5);
+  int blended_rows = 0;
+  for (int y = 100; y < 650; y += 2) {
+    int first = -1, count = 0;
+    for (int x = 476; x < 948; ++x)
+      if (brightness(x, y) > water + 60) {
+        first = first < 0 ? x : first;
+        ++count;
+      }
+    if (count < 20) continue;
+    int inner = 0;
+    for (int k = 0; k < 4; ++k) inner = std::max(inner, brightness(first + k, y));
+    blended_rows += brightness(first - 1, y) - water > 0.08 * (inner - water) ? 1 : 0;
+  }
+  EXPECT_GT(blended_rows, 45) << "the bell's outline should be blended into the water";
   // Green-dominant pixels (G above R and B by 80; no colour of either map is): the tracers, drawn
   // at 2/3 opacity over the field.
   int tracer_pixels = 0;
