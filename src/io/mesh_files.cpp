@@ -237,8 +237,12 @@ class GlbBuilder {
   }
 };
 
-/// A glTF material; `scale`: the mesh node's scale (KHR_materials_volume's thickness is in mesh units).
-nlohmann::json material_json(const std::string& name, const GlbMaterial* m, double scale) {
+/// A glTF material. The bell's tissue is alpha blending, as our renderer draws it (docs/rendering.md,
+/// "Look development exports"): the umbrella covers α of what is behind it and lets the rest
+/// through, dimmed by its transmission and absorption. KHR_materials_transmission would make the
+/// covered part refracting glass (Blender and three.js showed the bell nearly invisible), so the
+/// tissue's figures go to the material's extras instead.
+nlohmann::json material_json(const std::string& name, const GlbMaterial* m) {
   const std::array<double, 4> rgba = m ? m->rgba : std::array<double, 4>{0.8, 0.8, 0.8, 1.0};
   nlohmann::json j = {{"name", name},
                       {"pbrMetallicRoughness",
@@ -246,12 +250,9 @@ nlohmann::json material_json(const std::string& name, const GlbMaterial* m, doub
                       {"doubleSided", true}};
   if (rgba[3] < 1.0) j["alphaMode"] = "BLEND";
   if (m && m->transmission > 0.0) {
-    j["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", m->transmission}};
-    nlohmann::json volume = {{"thicknessFactor", m->thickness_m / scale},
-                             {"attenuationColor", {rgba[0], rgba[1], rgba[2]}}};
-    if (m->attenuation_distance_m > 0.0) volume["attenuationDistance"] = m->attenuation_distance_m;
-    j["extensions"]["KHR_materials_volume"] = volume;
-    j["doubleSided"] = false;  // a volume has an inside: the umbrella is closed, wound outward
+    j["extras"] = {{"jellysim_transmission", m->transmission},
+                   {"jellysim_attenuation_distance_m", m->attenuation_distance_m},
+                   {"jellysim_tissue_thickness_m", m->thickness_m}};
   }
   if (m && m->ior > 0.0) j["extensions"]["KHR_materials_ior"] = {{"ior", m->ior}};
   return j;
@@ -473,12 +474,12 @@ class GlbScene {
   }
 
  private:
-  /// The index of the material of a mesh part (added on first use; `scale`: its first mesh's).
-  int material_for(const std::string& part, double scale) {
+  /// The index of the material of a mesh part (added on first use).
+  int material_for(const std::string& part) {
     const auto at = std::find(material_names_.begin(), material_names_.end(), part);
     if (at != material_names_.end()) return static_cast<int>(at - material_names_.begin());
     const auto m = std::find_if(materials_.begin(), materials_.end(), [&](const GlbMaterial& g) { return g.part == part; });
-    materials_json_.push_back(material_json(part, m == materials_.end() ? nullptr : &*m, scale));
+    materials_json_.push_back(material_json(part, m == materials_.end() ? nullptr : &*m));
     material_names_.push_back(part);
     return static_cast<int>(material_names_.size()) - 1;
   }
@@ -491,7 +492,7 @@ class GlbScene {
     if (!velocities.v.empty())
       attributes["_VELOCITY"] = b_.normalized_vec3<std::int8_t>(velocities.v.front(), nullptr, pv.ids, velocities.scale);
     nlohmann::json primitive = {
-        {"attributes", attributes}, {"indices", b_.indices(pv.local)}, {"material", material_for(part.name, scale)}, {"mode", 4}};
+        {"attributes", attributes}, {"indices", b_.indices(pv.local)}, {"material", material_for(part.name)}, {"mode", 4}};
     nlohmann::json targets = nlohmann::json::array();
     for (std::size_t k : kept_) {
       nlohmann::json target = {
@@ -524,7 +525,7 @@ class GlbScene {
   nlohmann::json extensions_used() const {
     nlohmann::json used = nlohmann::json::array();
     if (!kept_.empty()) used.push_back("KHR_mesh_quantization");
-    for (const char* name : {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"})
+    for (const char* name : {"KHR_materials_ior"})
       if (std::any_of(materials_json_.begin(), materials_json_.end(),
                       [&](const nlohmann::json& m) { return m.contains("extensions") && m["extensions"].contains(name); }))
         used.push_back(name);

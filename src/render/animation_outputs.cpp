@@ -313,7 +313,7 @@ constexpr const char* kBlenderImport = R"py(# Opens jellysim's animation in Blen
 # sets the scene from there before importing), looking through the exported film camera at the
 # rendered frames' size:
 #   blender --python blender_import.py          (or Scripting > Open > Run in a running Blender)
-# The materials (glTF PBR with transmission, volume and IOR) arrive through Blender's importer.
+# The materials (glTF PBR, alpha-blended, with IOR) arrive through Blender's importer.
 import json
 import os
 import struct

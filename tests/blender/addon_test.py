@@ -77,8 +77,8 @@ for frame in (0, frames - 1):
     check(len(evaluated.data.vertices) == points and (got - Vector(expected)).length < 1e-6,
           f"frame {frame}: vertex 0 {tuple(got)} = cache {expected}")
 bell = bpy.data.materials.get("jellysim_bell")
-check(bell is not None and bell.node_tree.nodes["Principled BSDF"].inputs["Transmission"].default_value > 0.5,
-      "translucent bell material (Principled BSDF, transmission)")
+check(bell is not None and bell.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value < 0.5
+      and bell.blend_method == "BLEND", "translucent bell material (Principled BSDF, alpha-blended as jellysim draws it)")
 check(jelly.data.materials[0] == bell and len(jelly.data.materials) == 2, "bell and tentacle slots")
 snow = bpy.data.objects.get("marine_snow")
 check(snow is not None and len(snow.data.vertices) > 10 and snow.instance_type == "VERTS",

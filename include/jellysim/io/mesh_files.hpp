@@ -31,13 +31,15 @@ struct GlbMaterial {
   std::string part;                 ///< mesh part it applies to
   std::array<double, 4> rgba{};     ///< base colour, linear, alpha < 1 → alphaMode BLEND
   double roughness = 0.5;
-  double transmission = 0.0;        ///< > 0: KHR_materials_transmission (and KHR_materials_volume)
-  double attenuation_distance_m = 0.0;  ///< KHR_materials_volume, attenuation colour = rgb (0: none)
-  double thickness_m = 0.0;         ///< KHR_materials_volume thickness (m; in the mesh's units in the file)
+  /// > 0: the tissue of our renderer (render.transmission, render.attenuation_distance, the wall's
+  /// thickness), written to the material's extras: in glTF the bell is alpha blending, as we draw it
+  double transmission = 0.0;
+  double attenuation_distance_m = 0.0;
+  double thickness_m = 0.0;
   double ior = 0.0;                 ///< > 0: KHR_materials_ior
 };
 
-/// The materials of the exported look: umbrella (translucent, transmission, volume, ior),
+/// The materials of the exported look: umbrella (alpha-blended, its tissue in extras, ior),
 /// tentacles, obstacles, snow.
 std::vector<GlbMaterial> glb_materials(const ExportLook& look);
 
