@@ -348,8 +348,8 @@ TEST(Viewer, The3DPanelIsMultisampledAndThe2DPanelHasAColourBar) {
   EXPECT_LT(off(458, 276, {140, 204, 255}), 15) << "the cold end (−range) at its bottom";
   // Antialiased outline: on rows crossing the bell in the 3D panel (x in [476, 948)), the pixel just
   // outside its silhouette (the first pixel 60 above the water's brightness) carries more than 8 %
-  // of the step to the bell's brightness in 60 of 154 rows at 4 samples, in 22 of 146 rows drawn
-  // with one sample.
+  // of the step to the bell's brightness in 60 of 154 rows at 4 samples, in 22 of 146 rows with the
+  // single-sample panel of before this change (its shader differed too).
   const auto brightness = [&](int x, int y) {
     const auto p = image.at(x, y);
     return p[0] + p[1] + p[2];
