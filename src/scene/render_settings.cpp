@@ -127,7 +127,7 @@ std::vector<Parameter> loop_parameters() {
       number("render.loop_tolerance", "0.05", "", Range{0.0, 1.0, true, false},
              "periodic when a cycle's start matches the previous one's: umbrella shape about its centroid (RMS, of the "
              "diameter) and centroid speed (of diameter × frequency)"),
-      integer("render.loop_max_cycles", "10", 2, 1000, "the last cycle whose start may pass the check (then: exit 1)"),
+      integer("render.loop_max_cycles", "10", 2, 1000, "the last cycle whose start may pass the check; none by then: the loop cut at the best match, exit 1"),
       choice("render.loop_root_motion", "remove", {"remove", "constant"},
              "remove: the travel over the loop taken out linearly (the bell swims in place); constant: kept (frame N "
              "is frame 0 moved by summary.json's loop.travel)"),
