@@ -41,6 +41,7 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
   const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, j.frequency_hz);
   const jellyfish::LoopSearch search = jellyfish::search_loop(rec.frames, per_cycle, loop, j.diameter_m, j.frequency_hz);
   if (search.start_cycle() == 0) throw RunError("render.loop: the run recorded no cycle start to compare");
+  const jellyfish::StrokeMismatch& start = search.checked.at(static_cast<std::size_t>(search.start_cycle() - 2));
   const auto first = static_cast<std::size_t>(search.start_cycle() * per_cycle);
   const auto count = static_cast<std::size_t>(loop.cycles * per_cycle);
   jellyfish::LoopClip clip = jellyfish::cut_loop(rec.frames, first, count, settings.frames_per_second,
@@ -53,7 +54,7 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
   figures["loop"] = {{"periodic_cycle", search.periodic_cycle}, {"start_cycle", search.start_cycle()},
                      {"first_frame", first}, {"frames", count}, {"cycles", loop.cycles},
                      {"frames_per_cycle", per_cycle}, {"duration", clip.duration_s}, {"tolerance", loop.tolerance},
-                     {"mismatch", mismatch_json(search.checked.at(static_cast<std::size_t>(search.start_cycle() - 2)))},
+                     {"mismatch", mismatch_json(start)},
                      {"closure", mismatch_json(clip.closure)}, {"checked", checked},
                      {"root_motion", loop.root_motion == jellyfish::RootMotion::remove ? "remove" : "constant"},
                      {"travel", {clip.travel.x, clip.travel.y}},
@@ -62,11 +63,10 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
   frames = std::move(clip.frames);
   if (!tracers.empty()) tracers.assign(count, rec.tracers.at(first));
   if (search.periodic_cycle > 0) return {};
-  const jellyfish::StrokeMismatch& best = search.checked.at(static_cast<std::size_t>(search.start_cycle() - 2));
   return "render.loop: the stroke did not repeat within render.loop_tolerance = " +
          config::format_number(loop.tolerance) + " by render.loop_max_cycles = " + std::to_string(loop.max_cycles) +
-         " (the best match, cycle " + std::to_string(best.cycle) + ": shape " + config::format_number(best.shape) +
-         ", speed " + config::format_number(best.speed) + "); the loop was cut there";
+         " (the best match, cycle " + std::to_string(start.cycle) + ": shape " + config::format_number(start.shape) +
+         ", speed " + config::format_number(start.speed) + "); the loop was cut there";
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
