@@ -611,6 +611,7 @@ std::function<int()> define_scene_command(CLI::App& cmd, const std::string& comm
     std::string scene_path;
     CheckpointOptions checkpoints;
     std::optional<double> fps;
+    std::optional<int> loop_cycles;  ///< run --loop CYCLES
   };
   auto s = std::make_shared<State>();
   cmd.add_option("scene", s->scene_path, scene_help)->check(CLI::ExistingFile);
@@ -620,10 +621,21 @@ std::function<int()> define_scene_command(CLI::App& cmd, const std::string& comm
                  "not with output.frame_interval)")
       ->type_name("N")
       ->check(finite_range(0.0, 1000.0, true));
+  if (command == "run")
+    cmd.add_option("--loop", s->loop_cycles,
+                   "A seamless loop of CYCLES whole contraction cycles, [1, 100], from where the stroke is periodic "
+                   "(render.loop = true, render.loop_cycles = CYCLES; docs/rendering.md)")
+        ->type_name("CYCLES")
+        ->check(CLI::Range(1, 100));
   add_checkpoint_options(cmd, s->checkpoints, checkpoint_more);
   cmd.get_option("--fps")->excludes("--resume");
+  if (command == "run") cmd.get_option("--loop")->excludes("--resume");
   return [s, command] {
     if (s->fps) s->options.sets.push_back("output.fps=" + js::io::format_double(*s->fps));  // in checkpoints as a --set
+    if (s->loop_cycles) {
+      s->options.sets.push_back("render.loop=true");
+      s->options.sets.push_back("render.loop_cycles=" + std::to_string(*s->loop_cycles));
+    }
     if (!s->checkpoints.resume_dir.empty()) return resume_simulation(command, s->checkpoints.resume_dir, s->options);
     if (s->checkpoints.every > 0)
       return run_checkpointed_simulation(command, s->scene_path, s->options, s->checkpoints.every);

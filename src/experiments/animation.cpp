@@ -5,26 +5,86 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/core/errors.hpp"
+#include "jellysim/jellyfish/stroke_loop.hpp"
 #include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::experiments {
 namespace {
 
+// ---- render.loop (issue 39 item 3; jellyfish/stroke_loop.hpp, docs/rendering.md) ----
+
+nlohmann::ordered_json mismatch_json(const jellyfish::StrokeMismatch& m) {
+  return {{"cycle", m.cycle}, {"shape", m.shape}, {"speed", m.speed}};
+}
+
+/// A loop run's settings: every cycle start a frame, the run to the cap, stopped once the loop is recorded.
+void prepare_loop(const jellyfish::LoopSettings& loop, jellyfish::SwimSettings& settings, SwimOutputOptions& options,
+                  render::PipelineSettings& pipeline) {
+  settings = jellyfish::loop_search_settings(settings, loop);
+  const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, settings.jellyfish().frequency_hz);
+  const double diameter = settings.jellyfish().diameter_m, frequency = settings.jellyfish().frequency_hz;
+  options.stop_when = [=](const jellyfish::SwimRecord& rec) {
+    return jellyfish::search_loop(rec.frames, per_cycle, loop, diameter, frequency)
+        .recorded(rec.frames.size(), per_cycle, loop);
+  };
+  pipeline.geometry.noise.time_frequency_hz = 0.0;  // the noise's drift does not repeat: frozen in a loop
+}
+
+/// The loop cut from the run (its frames, the marine snow frozen at its first frame) into `frames`
+/// and `tracers`, loop_slices.csv (the closing frame last) and summary.json's "loop"; returns a
+/// failure when the stroke did not repeat within the tolerance (the loop is then cut at the best match).
+std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyfish::SwimSettings& settings,
+                               const SwimRecording& rec, const io::OutputDir& out, nlohmann::ordered_json& figures,
+                               std::vector<jellyfish::SliceFrame>& frames, std::vector<std::vector<Vec2>>& tracers) {
+  const jellyfish::JellyfishSpec& j = settings.jellyfish();
+  const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, j.frequency_hz);
+  const jellyfish::LoopSearch search = jellyfish::search_loop(rec.frames, per_cycle, loop, j.diameter_m, j.frequency_hz);
+  if (search.start_cycle() == 0) throw RunError("render.loop: the run recorded no cycle start to compare");
+  const jellyfish::StrokeMismatch& start = search.checked.at(static_cast<std::size_t>(search.start_cycle() - 2));
+  const auto first = static_cast<std::size_t>(search.start_cycle() * per_cycle);
+  const auto count = static_cast<std::size_t>(loop.cycles * per_cycle);
+  jellyfish::LoopClip clip = jellyfish::cut_loop(rec.frames, first, count, settings.frames_per_second,
+                                                 loop.root_motion, j.diameter_m, j.frequency_hz);
+  clip.closure.cycle = search.start_cycle() + loop.cycles;
+  write_slices_csv(out, clip.frames, "loop_slices.csv");
+  nlohmann::ordered_json checked = nlohmann::ordered_json::array();
+  for (const jellyfish::StrokeMismatch& m : search.checked) checked.push_back(mismatch_json(m));
+  figures["duration_rounded_to_frames"] = rec.frame_times.back();  // where the search stopped
+  figures["loop"] = {{"periodic_cycle", search.periodic_cycle}, {"start_cycle", search.start_cycle()},
+                     {"first_frame", first}, {"frames", count}, {"cycles", loop.cycles},
+                     {"frames_per_cycle", per_cycle}, {"duration", clip.duration_s}, {"tolerance", loop.tolerance},
+                     {"mismatch", mismatch_json(start)},
+                     {"closure", mismatch_json(clip.closure)}, {"checked", checked},
+                     {"root_motion", loop.root_motion == jellyfish::RootMotion::remove ? "remove" : "constant"},
+                     {"travel", {clip.travel.x, clip.travel.y}},
+                     {"root_velocity", {clip.travel.x / clip.duration_s, clip.travel.y / clip.duration_s}}};
+  clip.frames.pop_back();  // the closing frame is the first again
+  frames = std::move(clip.frames);
+  if (!tracers.empty()) tracers.assign(count, rec.tracers.at(first));
+  if (search.periodic_cycle > 0) return {};
+  return "render.loop: the stroke did not repeat within render.loop_tolerance = " +
+         config::format_number(loop.tolerance) + " by render.loop_max_cycles = " + std::to_string(loop.max_cycles) +
+         " (the best match, cycle " + std::to_string(start.cycle) + ": shape " + config::format_number(start.shape) +
+         ", speed " + config::format_number(start.speed) + "); the loop was cut there";
+}
+
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
-  const jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
+  jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   SwimOutputOptions options = read_output_options(ctx.config);
   if (settings.school.empty())
     throw InputError("the 3D animation needs a jellyfish: set jellyfish.enabled = true or add an [[objects]] entry "
                      "of type \"jellyfish\"");
   render::PipelineSettings pipeline = scene::read_render_settings(ctx.config);
+  const jellyfish::LoopSettings loop = scene::read_loop_settings(ctx.config);
+  if (loop.enabled) prepare_loop(loop, settings, options, pipeline);
   pipeline.fps = settings.frames_per_second > 0.0 ? settings.frames_per_second
                                                   : 1.0 / settings.frame_interval_s;  // the video plays in real time
   // The materials of jellyfish.glb and jellyfish.usda are the renderer's look: colours, opacities,
   // render.transmission and render.attenuation_distance (docs/rendering.md).
   pipeline.look = render::export_look(pipeline.style);
   options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
-  return [settings, options, pipeline, ctx](const io::OutputDir& out) {
+  return [settings, options, pipeline, loop, ctx](const io::OutputDir& out) {
     // With checkpoints, the simulation's end stays checkpointed until the animation is whole.
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress, ctx.checkpoints.get());
     write_metrics_csv(out, rec.metrics);
@@ -36,21 +96,23 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     // noise_seed − 1 (docs/scenes.md), so the first one keeps render.noise.seed.
     std::vector<std::vector<jellyfish::SliceFrame>> school{rec.frames};
     school.insert(school.end(), rec.others.begin(), rec.others.end());
+    std::vector<std::vector<Vec2>> tracers = rec.tracers;
+    std::string failure = rec.stats.failure;
+    if (loop.enabled && failure.empty()) failure = cut_animation_loop(loop, settings, rec, out, figures, school[0], tracers);
     std::vector<std::uint64_t> seeds;
     for (const jellyfish::JellyfishSpec& j : settings.school)
       seeds.push_back(pipeline.geometry.noise.seed + static_cast<std::uint64_t>(j.noise_seed) - 1);
-    if (ctx.render_progress) ctx.render_progress(0, rec.frames.size());  // the render stage starts
+    if (ctx.render_progress) ctx.render_progress(0, school[0].size());  // the render stage starts
     const render::AnimationOutputs anim = render::write_animation_outputs(
         school, seeds, pipeline, out,
         [&ctx](std::size_t done, std::size_t total) {
           if (ctx.render_progress) ctx.render_progress(done, total);
         },
-        rec.obstacle_outlines, rec.tracers);
+        loop.enabled ? render::ObstacleFrames{} : rec.obstacle_outlines, tracers);  // a loop's tank has none
     figures["animation"] = anim.figures();
-    std::string failure = rec.stats.failure;
-    if (failure.empty() && core::interrupt_signal() != 0 && anim.frames < rec.frames.size())
+    if (failure.empty() && core::interrupt_signal() != 0 && anim.frames < school[0].size())
       failure = "interrupted by " + core::signal_name(core::interrupt_signal()) + " while rendering, after " +
-                std::to_string(anim.frames) + " of " + std::to_string(rec.frames.size()) + " frames";
+                std::to_string(anim.frames) + " of " + std::to_string(school[0].size()) + " frames";
     write_summary(out, "run", ctx.config, figures, failure);
     if (ctx.checkpoints && failure.empty()) out.remove(io::kCheckpointName);  // whole: nothing to resume
     return Outcome{failure};

@@ -355,7 +355,8 @@ SwimRecording run_swim(const jellyfish::SwimSettings& settings, const SwimOutput
         if (s.time_s() >= next_checkpoint * (1.0 - 1e-12) && s.check().empty()) write_checkpoint(s);
         return {};
       },
-      progress, static_cast<std::int64_t>(frame));
+      progress, static_cast<std::int64_t>(frame),
+      options.stop_when ? std::function<bool()>([&] { return options.stop_when(rec); }) : std::function<bool()>());
   if (files) files->flush();  // every frame on disk (or a write's error) before the run's own files
   if (every > 0 && rec.stats.failure.empty()) {  // the run is whole
     if (checkpoints->keep_when_whole) write_checkpoint(sim);
@@ -396,7 +397,8 @@ void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec) {
   }
 }
 
-void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames) {
+void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames,
+                      const std::string& name) {
   io::CsvWriter csv({"part", "frame", "t", "index", "x", "y"});  // text cells come first in each row
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const auto& fr = frames[f];
@@ -407,7 +409,7 @@ void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::Sli
         csv.row({"tentacle_" + std::to_string(k)},
                 {static_cast<double>(f), fr.time_s, static_cast<double>(i), fr.tentacles[k][i].x, fr.tentacles[k][i].y});
   }
-  out.write_text("slices.csv", csv.text());
+  out.write_text(name, csv.text());
 }
 
 void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,

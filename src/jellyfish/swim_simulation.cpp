@@ -439,7 +439,7 @@ SwimStep SwimSimulation::advance(double dt_s) {
 }
 
 SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::ProgressCallback& progress,
-                                 std::int64_t frames_recorded) {
+                                 std::int64_t frames_recorded, const std::function<bool()>& done) {
   run_start_ = std::chrono::steady_clock::now();
   SwimRunStats stats;
   const double duration = settings_.duration_s;
@@ -449,6 +449,7 @@ SwimRunStats SwimSimulation::run(const FrameCallback& on_frame, const sim::Progr
   loop.time = [this] { return time_s(); };
   loop.frame = [&](std::int64_t) { return on_frame ? on_frame(*this) : std::string(); };
   loop.step = [&](double frame_time) -> sim::StepResult {
+    if (done && done()) return {sim::StepResult::Kind::stop, {}};
     const SwimStep s = step_toward(frame_time);
     if (s.failure.empty() || s.dt_s >= settings_.coupling.min_time_step_s) {
       smallest_step_s_ = std::min(smallest_step_s_, s.dt_s);

@@ -117,9 +117,26 @@ std::vector<Parameter> noise_section_parameters() {
   };
 }
 
+// [render]'s seamless loop (issue 39 item 3; jellyfish/stroke_loop.hpp, docs/rendering.md).
+std::vector<Parameter> loop_parameters() {
+  return {
+      boolean("render.loop", "false",
+              "a seamless loop: simulate until the stroke is periodic, then animate render.loop_cycles whole cycles "
+              "from there (the frame rate rounded to whole frames per cycle; `jellysim run --loop CYCLES`)"),
+      integer("render.loop_cycles", "1", 1, 100, "contraction cycles in the loop"),
+      number("render.loop_tolerance", "0.05", "", Range{0.0, 1.0, true, false},
+             "periodic when a cycle's start matches the previous one's: umbrella shape about its centroid (RMS, of the "
+             "diameter) and centroid speed (of diameter × frequency)"),
+      integer("render.loop_max_cycles", "10", 2, 1000, "the last cycle whose start may pass the check; none by then: the loop cut at the best match, exit 1"),
+      choice("render.loop_root_motion", "remove", {"remove", "constant"},
+             "remove: the travel over the loop taken out linearly (the bell swims in place); constant: kept (frame N "
+             "is frame 0 moved by summary.json's loop.travel)"),
+  };
+}
+
 ParameterTable make_render_parameters() {
   std::vector<Parameter> p = render_section_parameters();
-  for (std::vector<Parameter> more : {look_parameters(), output_parameters()})
+  for (std::vector<Parameter> more : {look_parameters(), output_parameters(), loop_parameters()})
     for (Parameter& q : more) p.push_back(std::move(q));
   for (Parameter& n : noise_section_parameters()) p.push_back(std::move(n));
   return ParameterTable("render", "", std::move(p));
@@ -230,6 +247,18 @@ render::PipelineSettings read_render_settings(const config::Config& c) {
   s.viewer_script = render::default_viewer_script();
   geometry::validate_geometry_settings(g);
   return s;
+}
+
+jellyfish::LoopSettings read_loop_settings(const config::Config& c) {
+  const Reader r(c, render_parameters());
+  jellyfish::LoopSettings loop;
+  loop.enabled = r.boolean("render.loop");
+  loop.cycles = static_cast<int>(r.integer("render.loop_cycles"));
+  loop.tolerance = r.number("render.loop_tolerance");
+  loop.max_cycles = static_cast<int>(r.integer("render.loop_max_cycles"));
+  loop.root_motion = r.choice("render.loop_root_motion") == "constant" ? jellyfish::RootMotion::constant
+                                                                        : jellyfish::RootMotion::remove;
+  return loop;
 }
 
 }  // namespace jellysim::scene

@@ -4,6 +4,7 @@
 // pictures and VTK files, and writing metrics, plots and summary figures.
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <optional>
 
 #include "jellysim/config/config.hpp"
@@ -26,6 +27,8 @@ struct SwimOutputOptions {
   double zoom_diameters = 6.0;  ///< picture width in bell diameters; 0: whole tank
   bool vtk = false;
   bool record_tracers = false;  ///< keep every frame's tracer positions (the animation's marine snow)
+  /// When given, asked before every step: true ends the run early with what is recorded (a loop).
+  std::function<bool(const jellyfish::SwimRecord&)> stop_when;
 };
 SwimOutputOptions read_output_options(const config::Config& c);
 
@@ -65,7 +68,8 @@ void write_metrics_csv(const io::OutputDir& out, const std::vector<jellyfish::Me
 /// structures.csv (t, structure, centroid_x, centroid_y: IB2d structures without their targets, m).
 void write_scene_extras(const io::OutputDir& out, const SwimRecording& rec);
 /// slices.csv: frame, t, part (umbrella or tentacle_k), index, x, y — the recorded 2D slices.
-void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames);
+void write_slices_csv(const io::OutputDir& out, const std::vector<jellyfish::SliceFrame>& frames,
+                      const std::string& name = "slices.csv");
 /// kinematics.png (position, velocity, acceleration; Figs 8.15–8.17, with Daniel's model) and
 /// morphology.png (volume and aperture ratios; Fig. 8.18).
 void write_swim_plots(const io::OutputDir& out, const std::vector<jellyfish::MetricsRow>& rows,

@@ -74,9 +74,10 @@ class SwimSimulation {
   using FrameCallback = std::function<std::string(const SwimSimulation&)>;
   /// Steps to settings().duration_s, calling on_frame at every frame. A simulation restored from a
   /// checkpoint taken at frame k (restore_state) continues with frames_recorded = k + 1: the first
-  /// frame it records is k + 1, and the stats count the whole run.
+  /// frame it records is k + 1, and the stats count the whole run. `done`, when given, is asked
+  /// before every step: true ends the run there, early and not as a failure (a loop is recorded).
   SwimRunStats run(const FrameCallback& on_frame, const sim::ProgressCallback& progress = {},
-                   std::int64_t frames_recorded = 0);
+                   std::int64_t frames_recorded = 0, const std::function<bool()>& done = {});
 
   /// Checkpoints (issue 23, core/state_archive.hpp): everything a run changes — the world (fluid,
   /// markers, springs, coupling, tracers), each jellyfish's controllers and steering, obstacle
