@@ -112,8 +112,28 @@ Eigen::Vector2d unfold(const Vec3& a3, const Vec3& b3, const Vec3& q3, const Eig
 
 /// The face's bending: N h = r (rows hinge_row or free_edge_row), W = ½ A D hᵀ B h with B the
 /// quadratic form of (tr H)² − 2(1 − ν) det H, so G = A D N⁻ᵀ B N⁻¹ on the hinge rows.
+/// The clamped edge's row: the element measures twice the face's turn about the held edge a → b,
+/// −2 (w_p − w_foot) / h for small slopes (dihedral_angle's sign: raising the far vertex turns the
+/// face negatively), w_foot the deflection interpolated along the edge at the foot of p and h the
+/// distance of p from the edge; for w = ½ xᵀ H x this is linear in h = (H_xx, H_xy, H_yy).
+Eigen::RowVector3d clamped_row(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d e = b - a;
+  const double s = (p - a).dot(e) / e.squaredNorm(), h = (p - a - s * e).norm();
+  auto basis = [](const Eigen::Vector2d& x) { return Eigen::RowVector3d(0.5 * x.x() * x.x(), x.x() * x.y(), 0.5 * x.y() * x.y()); };
+  return -2.0 * (basis(p) - (1.0 - s) * basis(a) - s * basis(b)) / h;
+}
+
+/// The rest position of x_p mirrored across the line a–b.
+Vec3 mirrored(const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec3 e = (b - a).normalized();
+  const Vec3 foot = a + (p - a).dot(e) * e;
+  return 2.0 * foot - p;
+}
+
+/// The face's bending: N h = r (rows hinge_row or free_edge_row), W = ½ A D hᵀ B h with B the
+/// quadratic form of (tr H)² − 2(1 − ν) det H, so G = A D N⁻ᵀ B N⁻¹ on the hinge rows.
 BendingTriangle make_bending_triangle(const TriangleMesh& mesh, const std::array<int, 3>& t, const std::array<int, 3>& across,
-                                      const ShellMaterial& m) {
+                                      const std::array<bool, 3>& clamped, const ShellMaterial& m) {
   auto at = [&](int v) { return mesh.vertices[static_cast<std::size_t>(v)]; };
   Vec3 e1, e2;
   const Eigen::Matrix2d dm = rest_frame(at(t[0]), at(t[1]), at(t[2]), e1, e2);
@@ -122,16 +142,19 @@ BendingTriangle make_bending_triangle(const TriangleMesh& mesh, const std::array
   Eigen::Matrix3d rows;
   for (std::size_t i = 0; i < 3; ++i) {
     const std::size_t a = (i + 1) % 3, b = (i + 2) % 3;
-    e.has_hinge[i] = across[i] >= 0;
+    const auto r = static_cast<Eigen::Index>(i);
     e.v[i] = t[i];
     e.v[3 + i] = across[i] >= 0 ? across[i] : t[i];
-    if (!e.has_hinge[i]) {
-      rows.row(static_cast<Eigen::Index>(i)) = free_edge_row(p[a], p[b], m.poisson_ratio);
+    e.edge[i] = across[i] >= 0 ? EdgeKind::hinge : clamped[i] ? EdgeKind::clamped : EdgeKind::free;
+    if (e.edge[i] == EdgeKind::free) {
+      rows.row(r) = free_edge_row(p[a], p[b], m.poisson_ratio);
       continue;
     }
-    const Eigen::Vector2d q = unfold(at(t[a]), at(t[b]), at(across[i]), p[a], p[b], p[i]);
-    rows.row(static_cast<Eigen::Index>(i)) = hinge_row(p[a], p[b], p[i], q);
-    e.rest_angle_rad[i] = dihedral_angle(at(t[a]), at(t[b]), at(t[i]), at(across[i]));
+    if (e.edge[i] == EdgeKind::clamped) e.mirror[i] = mirrored(at(t[a]), at(t[b]), at(t[i]));
+    const Vec3 far = e.edge[i] == EdgeKind::clamped ? e.mirror[i] : at(across[i]);
+    rows.row(r) = e.edge[i] == EdgeKind::clamped ? clamped_row(p[a], p[b], p[i])
+                                                 : hinge_row(p[a], p[b], p[i], unfold(at(t[a]), at(t[b]), far, p[a], p[b], p[i]));
+    e.rest_angle_rad[i] = (e.edge[i] == EdgeKind::clamped ? 2.0 : 1.0) * dihedral_angle(at(t[a]), at(t[b]), at(t[i]), far);
   }
   const double nu = m.poisson_ratio;
   Eigen::Matrix3d B;
@@ -139,7 +162,7 @@ BendingTriangle make_bending_triangle(const TriangleMesh& mesh, const std::array
   const Eigen::Matrix3d inv = rows.completeOrthogonalDecomposition().pseudoInverse();
   e.G = 0.5 * dm.determinant() * m.bending_n_m() * inv.transpose() * B * inv;
   for (int i = 0; i < 3; ++i)
-    if (!e.has_hinge[static_cast<std::size_t>(i)]) e.G.row(i).setZero(), e.G.col(i).setZero();
+    if (e.edge[static_cast<std::size_t>(i)] == EdgeKind::free) e.G.row(i).setZero(), e.G.col(i).setZero();
   return e;
 }
 
@@ -162,7 +185,8 @@ std::vector<std::array<int, 3>> across_edges(const TriangleMesh& mesh) {
 
 }  // namespace
 
-ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& material, BendingModel bending) {
+ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& material, BendingModel bending,
+                          const std::vector<int>& clamped) {
   validate(material);
   ShellBody body;
   const std::vector<double> area = vertex_areas(mesh);
@@ -173,8 +197,13 @@ ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& materia
     return body;
   }
   const auto across = across_edges(mesh);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-    body.bending_triangles.push_back(make_bending_triangle(mesh, mesh.triangles[f], across[f], material));
+  auto held = [&](int v) { return std::binary_search(clamped.begin(), clamped.end(), v); };
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    std::array<bool, 3> edge_clamped{};
+    for (std::size_t i = 0; i < 3; ++i) edge_clamped[i] = held(t[(i + 1) % 3]) && held(t[(i + 2) % 3]);
+    body.bending_triangles.push_back(make_bending_triangle(mesh, t, across[f], edge_clamped, material));
+  }
   return body;
 }
 

@@ -71,22 +71,27 @@ double hinge(const HingeElement& e, const Points<4>& x, Points<4>& f) {
 
 double bending_triangle(const BendingTriangle& e, const Points<6>& x, Points<6>& f) {
   // W = ½ Δθᵀ G Δθ over the face's hinges; hinge i runs along the edge opposite x_i, from x_{i+1}
-  // to x_{i+2}, with x_i on this side and x_{3+i} across.
+  // to x_{i+2}, with x_i on this side and x_{3+i} across. A clamped edge's hinge is to the face's
+  // mirror image: twice the angle to the (fixed) mirrored rest vertex.
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   std::array<Points<4>, 3> grads;
+  std::array<double, 3> factor{};
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!e.has_hinge[i]) continue;
-    const Points<4> hinge_points{x[(i + 1) % 3], x[(i + 2) % 3], x[i], x[3 + i]};
-    d(static_cast<Eigen::Index>(i)) = angle_difference(hinge_angle_gradient(hinge_points, grads[i]), e.rest_angle_rad[i]);
+    if (e.edge[i] == EdgeKind::free) continue;
+    const bool clamped = e.edge[i] == EdgeKind::clamped;
+    factor[i] = clamped ? 2.0 : 1.0;
+    const Points<4> hinge_points{x[(i + 1) % 3], x[(i + 2) % 3], x[i], clamped ? e.mirror[i] : x[3 + i]};
+    d(static_cast<Eigen::Index>(i)) =
+        angle_difference(factor[i] * hinge_angle_gradient(hinge_points, grads[i]), e.rest_angle_rad[i]);
   }
   const Eigen::Vector3d moment = e.G * d;  // ∂W/∂θ_i
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!e.has_hinge[i]) continue;
-    const double m = moment(static_cast<Eigen::Index>(i));
+    if (e.edge[i] == EdgeKind::free) continue;
+    const double m = factor[i] * moment(static_cast<Eigen::Index>(i));
     f[(i + 1) % 3] -= m * grads[i][0];
     f[(i + 2) % 3] -= m * grads[i][1];
     f[i] -= m * grads[i][2];
-    f[3 + i] -= m * grads[i][3];
+    if (e.edge[i] == EdgeKind::hinge) f[3 + i] -= m * grads[i][3];
   }
   return 0.5 * d.dot(moment);
 }

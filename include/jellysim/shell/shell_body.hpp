@@ -14,7 +14,9 @@
 //       reproduces the face's three hinge angles exactly for every quadratic deflection (a bending
 //       patch test, as the rotation-free plate triangles of Oñate & Zárate 2000 pass it), and
 //       Kirchhoff's energy W_t = ½ D A_t [(tr H)² − 2(1 − ν) det H] = ½ Δθᵀ G_t Δθ, Δθ = θ − θ̄;
-//       at a free edge the row of the missing hinge is the free edge's condition H_nn + ν H_tt = 0;
+//       at a free edge the row of the missing hinge is the free edge's condition H_nn + ν H_tt = 0,
+//       at a clamped edge (both its vertices held) the hinge to the face's mirror image across the
+//       edge, whose angle is twice the face's turn about the edge from its rest plane;
 //     - hinge: Discrete Shells' energy W = k_e (θ_e − θ̄_e)², k_e = D |ē|² / (2 Ā_e) (Ā_e the rest
 //       area of the edge's two faces): exact for cylinders on equilateral meshes, but its Poisson
 //       ratio is −1/3 there whatever ν, and other meshes shift it (measured in the docs);
@@ -52,11 +54,14 @@ struct HingeElement {
   double stiffness_n_m = 0.0;    ///< k_e
 };
 
+enum class EdgeKind { hinge, free, clamped };
+
 /// A face and the three vertices across its edges: v[0..2] the face, v[3 + i] across the edge
 /// opposite v[i] (v[i] itself where that edge is on the boundary).
 struct BendingTriangle {
   std::array<int, 6> v{};
-  std::array<bool, 3> has_hinge{};       ///< false: the edge is on the boundary
+  std::array<EdgeKind, 3> edge{EdgeKind::hinge, EdgeKind::hinge, EdgeKind::hinge};
+  std::array<Vec3, 3> mirror{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< clamped edges: the face's far vertex mirrored at rest
   std::array<double, 3> rest_angle_rad{};
   Eigen::Matrix3d G = Eigen::Matrix3d::Zero();  ///< W = ½ Δθᵀ G Δθ (N·m)
 };
@@ -103,9 +108,11 @@ std::vector<Vec3> unstack(const Vector& x);
 inline Vec3 vertex(const Vector& x, int i) { return x.segment<3>(3 * static_cast<Eigen::Index>(i)); }
 
 /// A membrane element and the bending of every face (or every interior edge: BendingModel::hinge)
-/// of `mesh`, rest state = the mesh, lumped masses ρh A/3 (validates the material).
+/// of `mesh`, rest state = the mesh, lumped masses ρh A/3 (validates the material). Boundary edges
+/// with both vertices in `clamped` (ascending; the caller holds those vertices) are clamped edges
+/// of the face-wise bending, the others free.
 ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& material,
-                          BendingModel bending = BendingModel::triangle);
+                          BendingModel bending = BendingModel::triangle, const std::vector<int>& clamped = {});
 /// A fibre on face (a, b, c) at rest positions along `direction` (projected into the face).
 FibreElement make_fibre(const Vec3& xa, const Vec3& xb, const Vec3& xc, std::array<int, 3> v, const Vec3& direction,
                         double stiffness_n_per_m);
