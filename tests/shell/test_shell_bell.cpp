@@ -189,7 +189,7 @@ TEST(ShellBell, SymmetricStrokeIsAxisymmetric) {
   // varies with the faces' layout (a discretisation error, measured here).
   js::ShellBell bell(coarse_bell());
   js::Vector x;
-  run_stroke(bell, 0.3, [&](double, const js::Vector& now) { x = now; });
+  run_stroke(bell, 0.2, [&](double, const js::Vector& now) { x = now; });
   const auto& r = bell.surface().rings;
   double largest = 0.0, sixfold = 0.0, spread = 0.0;
   for (std::size_t j = 0; j < r.first.size(); ++j) {
@@ -206,7 +206,9 @@ TEST(ShellBell, SymmetricStrokeIsAxisymmetric) {
     spread = std::max(spread, hi - lo);
   }
   const double volume_ratio = bell.cavity_volume(x) / bell.cavity_volume(bell.rest_positions());
-  std::printf("symmetric stroke at 0.3 s: largest radial displacement %.3e m, sixfold mismatch %.2e m (%.1e of it), "
+  std::printf("bell of %zu surface vertices, %zu faces, %zu points in all\n", bell.surface().mesh.vertices.size(),
+              bell.surface().mesh.triangles.size(), bell.body().vertex_count());
+  std::printf("symmetric stroke at 0.2 s: largest radial displacement %.3e m, sixfold mismatch %.2e m (%.1e of it), "
               "largest spread within a ring %.3e m (%.2f %% of it), cavity volume ratio %.4f\n",
               largest, sixfold, sixfold / largest, spread, 100 * spread / largest, volume_ratio);
   EXPECT_LT(sixfold / largest, 1e-12);
@@ -223,11 +225,11 @@ TEST(ShellBell, PacemakerSideContractsFirst) {
   js::ShellBell bell(spec);
   const double delay = kPi * 0.5 * spec.slice.diameter_m / bell.conduction_speed_m_per_s();
   double near_first = 0.0, far_first = 0.0, near_at_01 = 0.0, far_at_01 = 0.0;
-  run_stroke(bell, 0.12, [&](double t, const js::Vector& x) {
+  run_stroke(bell, 0.1, [&](double t, const js::Vector& x) {
     const double near = margin_displacement(bell, x, 0.0), far = margin_displacement(bell, x, kPi);
     if (near_first == 0.0 && near < -5e-4) near_first = t;
     if (far_first == 0.0 && far < -5e-4) far_first = t;
-    if (std::abs(t - 0.1) < 2.5e-5) near_at_01 = near, far_at_01 = far;
+    near_at_01 = near, far_at_01 = far;  // the last call is at 0.1 s
   });
   std::printf("pacemaker at azimuth 0, c = %.3f m/s: delay to the far side %.4f s; margin in by 0.5 mm at %.4f s (near), "
               "%.4f s (far): %.4f s apart; at 0.1 s near %.3e m, far %.3e m\n",
@@ -241,7 +243,7 @@ TEST(ShellBell, PacemakerSideContractsFirst) {
 
 TEST(ShellBell, LeapfrogConservesTheEnergyWithoutDrag) {
   // Relaxed muscles, no drag, every point set moving at random: the leap-frog keeps the total energy
-  // to a bounded error that falls as Δt² (measured over 0.05 s).
+  // to a bounded error that falls as Δt² (measured over 0.02 s, every tenth step).
   std::vector<double> drift;
   for (double dt : {4e-5, 2e-5}) {
     js::ShellBell bell(coarse_bell());
@@ -254,10 +256,10 @@ TEST(ShellBell, LeapfrogConservesTheEnergyWithoutDrag) {
     const double e0 = energy(y);
     double worst = 0.0;
     jellysim::ode::Leapfrog stepper;
-    for (int k = 0; k < static_cast<int>(std::lround(0.05 / dt)); ++k) {
+    for (int k = 0; k < static_cast<int>(std::lround(0.02 / dt)); ++k) {
       stepper.step(system, k * dt, dt, y, next, nullptr);
       y.swap(next);
-      worst = std::max(worst, std::abs(energy(y) / e0 - 1.0));
+      if (k % 10 == 9) worst = std::max(worst, std::abs(energy(y) / e0 - 1.0));
     }
     drift.push_back(worst);
     std::printf("energy, dt = %.0e s: largest relative error %.3e\n", dt, worst);
