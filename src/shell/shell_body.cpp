@@ -110,8 +110,9 @@ Eigen::Vector2d unfold(const Vec3& a3, const Vec3& b3, const Vec3& q3, const Eig
   return a + s * (b - a) + height * n;
 }
 
-/// The face's bending: N h = r (rows hinge_row or free_edge_row), W = ½ A D hᵀ B h with B the
-/// quadratic form of (tr H)² − 2(1 − ν) det H, so G = A D N⁻ᵀ B N⁻¹ on the hinge rows.
+/// The face's bending: h = (H_xx, H_xy, H_yy) = M Δθ with M the mid-edge map, or (fitted) M = N⁻¹
+/// with N's rows hinge_row, clamped_row or free_edge_row; W = ½ A D hᵀ B h with B the quadratic
+/// form of (tr H)² − 2(1 − ν) det H, so G = A D Mᵀ B M on the hinge rows.
 /// The clamped edge's row: the element measures twice the face's turn about the held edge a → b,
 /// −2 (w_p − w_foot) / h for small slopes (dihedral_angle's sign: raising the far vertex turns the
 /// face negatively), w_foot the deflection interpolated along the edge at the foot of p and h the
@@ -130,10 +131,28 @@ Vec3 mirrored(const Vec3& a, const Vec3& b, const Vec3& p) {
   return 2.0 * foot - p;
 }
 
-/// The face's bending: N h = r (rows hinge_row or free_edge_row), W = ½ A D hᵀ B h with B the
-/// quadratic form of (tr H)² − 2(1 − ν) det H, so G = A D N⁻ᵀ B N⁻¹ on the hinge rows.
+/// The face's bending: h = (H_xx, H_xy, H_yy) = M Δθ with M the mid-edge map, or (fitted) M = N⁻¹
+/// with N's rows hinge_row, clamped_row or free_edge_row; W = ½ A D hᵀ B h with B the quadratic
+/// form of (tr H)² − 2(1 − ν) det H, so G = A D Mᵀ B M on the hinge rows.
+/// The mid-edge map (Oñate & Zárate's Basic Plate Triangle): ∫_t H = ∮ ∇w ⊗ n with the slope at each
+/// edge's midpoint the average of the two faces', so H = (1/2A) Σ_i |e_i| [∂w/∂n]_i n_i n_iᵀ over the
+/// face's edges (the face's own gradient drops out, Σ |e_i| n_i = 0); [∂w/∂n] = −θ for small slopes.
+/// A free edge has no jump; a clamped one the jump to the face's mirror image.
+Eigen::Matrix3d midedge_map(const std::array<Eigen::Vector2d, 3>& p, const std::array<EdgeKind, 3>& kind) {
+  const double area = 0.5 * std::abs((p[1] - p[0]).x() * (p[2] - p[0]).y() - (p[1] - p[0]).y() * (p[2] - p[0]).x());
+  Eigen::Matrix3d map = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (kind[i] == EdgeKind::free) continue;
+    const Eigen::Vector2d e = p[(i + 2) % 3] - p[(i + 1) % 3];
+    const Eigen::Vector2d n = Eigen::Vector2d(-e.y(), e.x()).normalized();
+    const double c = -e.norm() / (2.0 * area);  // dihedral_angle is minus the slope jump
+    map.col(static_cast<Eigen::Index>(i)) << c * n.x() * n.x(), c * n.x() * n.y(), c * n.y() * n.y();
+  }
+  return map;
+}
+
 BendingTriangle make_bending_triangle(const TriangleMesh& mesh, const std::array<int, 3>& t, const std::array<int, 3>& across,
-                                      const std::array<bool, 3>& clamped, const ShellMaterial& m) {
+                                      const std::array<bool, 3>& clamped, const ShellMaterial& m, bool midedge) {
   auto at = [&](int v) { return mesh.vertices[static_cast<std::size_t>(v)]; };
   Vec3 e1, e2;
   const Eigen::Matrix2d dm = rest_frame(at(t[0]), at(t[1]), at(t[2]), e1, e2);
@@ -159,7 +178,7 @@ BendingTriangle make_bending_triangle(const TriangleMesh& mesh, const std::array
   const double nu = m.poisson_ratio;
   Eigen::Matrix3d B;
   B << 1.0, 0.0, nu, 0.0, 2.0 * (1.0 - nu), 0.0, nu, 0.0, 1.0;
-  const Eigen::Matrix3d inv = rows.completeOrthogonalDecomposition().pseudoInverse();
+  const Eigen::Matrix3d inv = midedge ? midedge_map(p, e.edge) : Eigen::Matrix3d(rows.completeOrthogonalDecomposition().pseudoInverse());
   e.G = 0.5 * dm.determinant() * m.bending_n_m() * inv.transpose() * B * inv;
   for (int i = 0; i < 3; ++i)
     if (e.edge[static_cast<std::size_t>(i)] == EdgeKind::free) e.G.row(i).setZero(), e.G.col(i).setZero();
@@ -202,7 +221,7 @@ ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& materia
     const auto& t = mesh.triangles[f];
     std::array<bool, 3> edge_clamped{};
     for (std::size_t i = 0; i < 3; ++i) edge_clamped[i] = held(t[(i + 1) % 3]) && held(t[(i + 2) % 3]);
-    body.bending_triangles.push_back(make_bending_triangle(mesh, t, across[f], edge_clamped, material));
+    body.bending_triangles.push_back(make_bending_triangle(mesh, t, across[f], edge_clamped, material, bending == BendingModel::midedge));
   }
   return body;
 }

@@ -39,7 +39,7 @@ struct ShellBellSpec {
   jellyfish::JellyfishSpec slice{};
   double target_edge_m = 0.004;            ///< mesh edge length (the meridian's rows are √3/2 of it apart)
   double poisson_ratio = 0.5;              ///< mesoglea: nearly incompressible
-  BendingModel bending = BendingModel::triangle;
+  BendingModel bending = BendingModel::midedge;
   double radial_muscle_n_per_m = 0.0;      ///< radial muscle layer, tension per unit width per unit strain
   bool pacemaker = false;                  ///< false: the margin fires at once (symmetric stroke)
   double pacemaker_azimuth_rad = 0.0;      ///< where on the margin the impulse starts

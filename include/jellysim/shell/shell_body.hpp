@@ -8,18 +8,21 @@
 //    F the 3×2 deformation gradient of the face; it is linear plane-stress elasticity (E, ν) for
 //    small strains and stays finite however far the muscles compress it;
 //  * bending, from the hinge angles θ_e (the signed dihedral angles at interior edges) of
-//    Grinspun, Hirani, Desbrun & Schröder, "Discrete Shells" (SCA 2003), one of two ways
+//    Grinspun, Hirani, Desbrun & Schröder, "Discrete Shells" (SCA 2003), one of three ways
 //    (BendingModel, docs/three-d.md gives the derivations and the measured mesh-dependence):
-//     - triangle (the default): per face, the curvature tensor H_t (2×2, in the face's frame) that
-//       reproduces the face's three hinge angles exactly for every quadratic deflection (a bending
-//       patch test, as the rotation-free plate triangles of Oñate & Zárate 2000 pass it), and
+//     - midedge (the default): per face a curvature tensor H_t (2×2, in the face's frame) from the
+//       slopes at its edges' midpoints averaged between the two faces there, the Basic Plate
+//       Triangle of Oñate & Zárate ("Rotation-free triangular plate and shell elements", IJNME 47,
+//       2000): H_t = −(1/2A_t) Σ_i |e_i| θ_i n_i n_iᵀ (n_i the edge's in-plane normal), and
 //       Kirchhoff's energy W_t = ½ D A_t [(tr H)² − 2(1 − ν) det H] = ½ Δθᵀ G_t Δθ, Δθ = θ − θ̄;
-//       at a free edge the row of the missing hinge is the free edge's condition H_nn + ν H_tt = 0,
-//       at a clamped edge (both its vertices held) the hinge to the face's mirror image across the
-//       edge, whose angle is twice the face's turn about the edge from its rest plane;
+//       a free edge contributes no slope jump; a clamped edge (both its vertices held) the hinge
+//       to the face's mirror image, twice the face's turn about the edge from its rest plane;
+//     - fitted: the same energy with H_t fitted so that the face's three hinge angles are exact
+//       for every quadratic deflection (the free edge's row H_nn + ν H_tt = 0): exact energies for
+//       quadratics on any mesh, but its forces are not (measured in the docs);
 //     - hinge: Discrete Shells' energy W = k_e (θ_e − θ̄_e)², k_e = D |ē|² / (2 Ā_e) (Ā_e the rest
 //       area of the edge's two faces): exact for cylinders on equilateral meshes, but its Poisson
-//       ratio is −1/3 there whatever ν, and other meshes shift it (measured in the docs);
+//       ratio is −1/3 there whatever ν, and other meshes shift it;
 //  * mass: ρh times a third of each face's rest area, lumped at the vertices;
 //  * fibres (muscles): per face a tension along a rest direction a, W = ½ k A₀ (|F a| − r)², k the
 //    layer's tension per unit width per unit strain (N/m), r its rest stretch (the contraction);
@@ -66,7 +69,7 @@ struct BendingTriangle {
   Eigen::Matrix3d G = Eigen::Matrix3d::Zero();  ///< W = ½ Δθᵀ G Δθ (N·m)
 };
 
-enum class BendingModel { triangle, hinge };
+enum class BendingModel { midedge, fitted, hinge };
 
 struct FibreElement {
   std::array<int, 3> v{};
@@ -95,7 +98,7 @@ struct ShellBody {
   std::vector<double> mass_kg;      ///< per vertex
   std::vector<MembraneElement> membranes;
   std::vector<HingeElement> hinges;                  ///< BendingModel::hinge
-  std::vector<BendingTriangle> bending_triangles;    ///< BendingModel::triangle
+  std::vector<BendingTriangle> bending_triangles;    ///< BendingModel::midedge and ::fitted
   std::vector<FibreElement> fibres;
   std::vector<RodSegment> rod_segments;
   std::vector<RodJoint> rod_joints;
@@ -112,7 +115,7 @@ inline Vec3 vertex(const Vector& x, int i) { return x.segment<3>(3 * static_cast
 /// with both vertices in `clamped` (ascending; the caller holds those vertices) are clamped edges
 /// of the face-wise bending, the others free.
 ShellBody make_shell_body(const TriangleMesh& mesh, const ShellMaterial& material,
-                          BendingModel bending = BendingModel::triangle, const std::vector<int>& clamped = {});
+                          BendingModel bending = BendingModel::midedge, const std::vector<int>& clamped = {});
 /// A fibre on face (a, b, c) at rest positions along `direction` (projected into the face).
 FibreElement make_fibre(const Vec3& xa, const Vec3& xb, const Vec3& xc, std::array<int, 3> v, const Vec3& direction,
                         double stiffness_n_per_m);
