@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 
@@ -36,6 +37,27 @@ void ShellSystem::compute_derivative(double t, const ode::Vector& y, ode::Vector
     dydt(i) = held ? 0.0 : v;
     dydt(n + i) = held ? 0.0 : f(i) / m - loads_.damping_per_s * v;
   }
+}
+
+void ShellSystem::compute_jacobian(double t, const ode::Vector& y, ode::SparseMatrix& jac) const {
+  // d(dx/dt)/dv = I, d(dv/dt)/dx = −M⁻¹ K, d(dv/dt)/dv = −c I; nothing moves a held component.
+  const Eigen::Index n = position_size();
+  if (before_force_) before_force_(t);
+  const SparseMatrix k = stiffness_matrix(body_, y.head(n));
+  auto held = [&](Eigen::Index i) { return loads_.fixed[static_cast<std::size_t>(i)] != 0; };
+  std::vector<Eigen::Triplet<double>> t_list;
+  t_list.reserve(static_cast<std::size_t>(k.nonZeros() + 2 * n));
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (!held(i)) {
+      t_list.emplace_back(i, n + i, 1.0);
+      if (loads_.damping_per_s != 0.0) t_list.emplace_back(n + i, n + i, -loads_.damping_per_s);
+    }
+  for (Eigen::Index col = 0; col < k.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(k, col); it; ++it)
+      if (!held(it.row()))
+        t_list.emplace_back(n + it.row(), it.col(), -it.value() / body_.mass_kg[static_cast<std::size_t>(it.row() / 3)]);
+  jac.resize(2 * n, 2 * n);
+  jac.setFromTriplets(t_list.begin(), t_list.end());
 }
 
 double kinetic_energy(const ShellBody& body, const Vector& v) {

@@ -18,7 +18,8 @@ struct ShellLoads {
 };
 
 /// M a = f_elastic(x) + f_external − c M v, with a = 0 and v = 0 on fixed components. `before_force`
-/// runs before every force evaluation with the time (the muscles' actuation).
+/// runs before every force evaluation with the time (the muscles' actuation). The Jacobian
+/// [[0, I], [−M⁻¹K, −cI]] (K = stiffness_matrix, fixed rows zero) lets ode::BackwardEuler step it.
 class ShellSystem final : public ode::OdeSystem {
  public:
   ShellSystem(ShellBody& body, ShellLoads loads, std::function<void(double)> before_force = {});
@@ -26,9 +27,11 @@ class ShellSystem final : public ode::OdeSystem {
   Eigen::Index position_size() const override { return 3 * static_cast<Eigen::Index>(body_.vertex_count()); }
   /// y = [x; 0] from positions.
   Vector initial_state(const Vector& x) const;
+  bool has_jacobian() const override { return true; }
 
  protected:
   void compute_derivative(double t, const ode::Vector& y, ode::Vector& dydt) const override;
+  void compute_jacobian(double t, const ode::Vector& y, ode::SparseMatrix& jac) const override;
 
  private:
   ShellBody& body_;
