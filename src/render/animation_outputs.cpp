@@ -177,10 +177,10 @@ class CacheRecorder {
   }
   /// The bodies of the .glb: each jellyfish about its pivot with its root motion, the obstacles
   /// at the origin.
-  std::vector<io::GlbBody> glb_bodies() const {
+  std::vector<io::GlbBody> glb_bodies(bool velocities) const {
     std::vector<io::GlbBody> bodies;
     for (const Body& b : bodies_) {
-      io::GlbBody g{b.name, b.rest, {}, b.roots, b.uv, true};
+      io::GlbBody g{b.name, b.rest, {}, b.roots, b.uv, velocities};
       for (Vec3& p : g.first.positions) p = p - b.roots.front();
       for (std::size_t k = 0; k < b.frames.size(); ++k) {
         std::vector<Vec3> local = b.frames[k];
@@ -232,7 +232,7 @@ class CacheRecorder {
     {
       std::vector<io::UsdBody> stage;
       for (const Body* b : all) {
-        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}, b->uv, true};
+        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}, b->uv, s.vertex_velocities};
         if (b->name == "obstacles") u.colour = {0.23, 0.2, 0.17};
         for (std::size_t k = 0; k < b->frames.size(); ++k) {
           std::vector<Vec3> local = b->frames[k];
@@ -670,7 +670,7 @@ class AnimationWriter {
 
   void write_glb() {
     const std::string glb =
-        io::glb_bytes(caches_.glb_bodies(), animation_.times_s, io::glb_materials(look()), s_.glb_every, s_.fps,
+        io::glb_bytes(caches_.glb_bodies(s_.vertex_velocities), animation_.times_s, io::glb_materials(look()), s_.glb_every, s_.fps,
                       export_camera());
     out_.write_text("jellyfish.glb", glb);
     out_.write_text("blender_import.py", kBlenderImport);

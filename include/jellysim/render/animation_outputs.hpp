@@ -62,6 +62,9 @@ struct PipelineSettings {
   /// frames/frame_NNNN.exr: beauty (RGBA, linear half), depth (Z, m) and screen-space velocity
   /// (velocity.X, velocity.Y: pixels per frame) passes (render/exr_frames.hpp).
   bool exr = false;
+  /// The jellyfish's per-vertex velocities (m/s) in the .glb (_VELOCITY) and .usda (`velocities`),
+  /// for motion blur; off, the .glb is about a quarter smaller (docs/rendering.md).
+  bool vertex_velocities = true;
   /// viewer.html: embed the .glb as base64 (jellyfish.glb.js, opens from file://) instead of
   /// loading jellyfish.glb beside it (needs a web server: browsers refuse file:// fetches).
   bool page_embed = false;
