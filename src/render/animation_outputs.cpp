@@ -669,14 +669,32 @@ class AnimationWriter {
   }
 
   void write_glb() {
-    const std::string glb =
-        io::glb_bytes(caches_.glb_bodies(s_.vertex_velocities), animation_.times_s, io::glb_materials(look()), s_.glb_every, s_.fps,
-                      export_camera());
+    std::vector<io::GlbBody> bodies = caches_.glb_bodies(s_.vertex_velocities);
+    std::vector<double> times = animation_.times_s;
+    io::ExportCamera camera = export_camera();
+    if (s_.loop_travel_m) close_loop(bodies, times, camera);
+    const std::string glb = io::glb_bytes(bodies, times, io::glb_materials(look()), s_.glb_every, s_.fps, camera,
+                                          s_.loop_travel_m.has_value());
     out_.write_text("jellyfish.glb", glb);
     out_.write_text("blender_import.py", kBlenderImport);
     result_.files.insert(result_.files.end(), {"jellyfish.glb", "blender_import.py"});
     result_.glb_bytes = glb.size();
     if (s_.viewer) write_viewer(s_, glb, out_, result_);
+  }
+
+  /// A loop's closing key for the .glb: frame 0 again one frame after the last (at N / fps on the
+  /// frame clock), the jellyfish's roots and a follow camera moved on by the loop's travel.
+  void close_loop(std::vector<io::GlbBody>& bodies, std::vector<double>& times, io::ExportCamera& camera) const {
+    const Vec3 travel = *s_.loop_travel_m;
+    for (io::GlbBody& b : bodies) {
+      b.positions.push_back(b.positions.front());
+      if (!b.root.empty()) b.root.push_back(b.root.front() + travel);
+    }
+    times.push_back(times.front() + static_cast<double>(times.size()) / s_.fps);
+    if (camera.frames.empty()) return;
+    io::CameraFrame c = camera.frames.front();
+    if (s_.camera == "follow") c = {c.eye + travel, c.target + travel, c.up};
+    camera.frames.push_back(c);
   }
 
   /// The settings' look, the tissue thickness from the first slice unless set.
