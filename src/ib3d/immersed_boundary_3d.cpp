@@ -186,8 +186,10 @@ Eigen::VectorXd ImmersedBoundary3d::solve_correction(double dt_s, const Eigen::V
     ++r.projections;
     out = z - dt2 * response;
   };
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(rhs.size());
-  const ode::GmresReport g = ode::gmres(op, rhs, y, settings_.krylov_tolerance, settings_.krylov_max_iterations);
+  Eigen::VectorXd y, coefficients;
+  // From zero, without restarts (the Krylov basis holds 3N numbers a vector: small beside a field).
+  const ode::GmresReport g = ode::gmres_from_zero(op, rhs, y, coefficients, settings_.krylov_tolerance,
+                                                  settings_.krylov_max_iterations, settings_.krylov_max_iterations);
   r.krylov_iterations = g.iterations;
   r.relative_residual = g.relative_residual;
   r.converged = g.converged;

@@ -1,6 +1,8 @@
 #include "jellysim/ib3d/markers_3d.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace jellysim::ib3d {
@@ -110,6 +112,33 @@ bool SpringNet3d::stiffness(double t_s, std::span<const Vec3> x, Eigen::SparseMa
   k.setFromTriplets(t.begin(), t.end());
   if (also_) k += base;
   return true;
+}
+
+std::vector<Vec3> sphere_surface_markers(const Vec3& centre, double radius_m, double spacing_m, bool quarter_only) {
+  std::vector<Vec3> x;
+  const int rings = std::max(2, static_cast<int>(std::ceil(std::numbers::pi * radius_m / spacing_m)));
+  for (int i = 0; i < rings; ++i) {
+    const double theta = std::numbers::pi * (i + 0.5) / rings;
+    const double ring = radius_m * std::sin(theta);
+    const int around = 4 * std::max(1, static_cast<int>(std::lround(0.5 * std::numbers::pi * ring / spacing_m)));
+    for (int j = 0; j < around; ++j) {
+      const double phi = 2.0 * std::numbers::pi * (j + 0.5) / around;
+      const Vec3 p{centre[0] + ring * std::cos(phi), centre[1] - radius_m * std::cos(theta), centre[2] + ring * std::sin(phi)};
+      if (!quarter_only || (p[0] > centre[0] && p[2] > centre[2])) x.push_back(p);
+    }
+  }
+  return x;
+}
+
+std::vector<SpringNet3d::Spring> neighbour_springs(std::span<const Vec3> x, double max_distance_m, double stiffness_n_per_m) {
+  std::vector<SpringNet3d::Spring> springs;
+  for (std::size_t a = 0; a < x.size(); ++a)
+    for (std::size_t b = a + 1; b < x.size(); ++b) {
+      const Vec3 d = difference(x, static_cast<int>(a), static_cast<int>(b));
+      const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (l < max_distance_m) springs.push_back({static_cast<int>(a), static_cast<int>(b), l, stiffness_n_per_m});
+    }
+  return springs;
 }
 
 }  // namespace jellysim::ib3d

@@ -41,8 +41,8 @@ std::string_view to_string(Preconditioner3d p);
 struct CouplingSettings3d {
   Scheme3d scheme = Scheme3d::semi_implicit;
   coupling::Kernel kernel = coupling::Kernel::peskin4;
-  Preconditioner3d preconditioner = Preconditioner3d::self_mobility;
-  double krylov_tolerance = 1e-8;  ///< relative residual of the semi-implicit solve
+  Preconditioner3d preconditioner = Preconditioner3d::none;  ///< self_mobility measured slower (docs/three-d.md)
+  double krylov_tolerance = 1e-6;  ///< relative residual of the semi-implicit solve (as in 2D)
   int krylov_max_iterations = 200;
   int threads = 1;  ///< spreading and interpolation (0: all cores); the bits do not depend on it
 };

@@ -49,6 +49,7 @@ class Tethers3d final : public ForceModel3d {
   void jacobian_times(double t_s, std::span<const Vec3> x, std::span<const Vec3> dx, std::span<Vec3> df) const override;
   bool stiffness(double t_s, std::span<const Vec3> x, Eigen::SparseMatrix<double>& k) const override;
   std::vector<Vec3>& anchors() { return anchors_; }
+  const std::vector<Vec3>& anchors() const { return anchors_; }
   const std::vector<double>& stiffness() const { return stiffness_; }
 
  private:
@@ -74,5 +75,13 @@ class SpringNet3d final : public ForceModel3d {
   std::vector<Spring> springs_;
   const ForceModel3d* also_;
 };
+
+/// Markers on a sphere (tests, benchmarks, rigid bodies): latitude rings θ_i = (i + ½)π/n_θ, each
+/// with a multiple of four markers at φ_j = (j + ½)2π/n_φ about the vertical (y) axis, about
+/// `spacing` apart; the set is its own mirror image about the planes x = c_x and z = c_z and has no
+/// marker on them, so `quarter_only` (x > c_x, z > c_z) gives what a quarter tank holds.
+std::vector<Vec3> sphere_surface_markers(const Vec3& centre, double radius_m, double spacing_m, bool quarter_only);
+/// Springs (stiffness k, rest length the present distance) between markers closer than max_distance.
+std::vector<SpringNet3d::Spring> neighbour_springs(std::span<const Vec3> x, double max_distance_m, double stiffness_n_per_m);
 
 }  // namespace jellysim::ib3d
