@@ -91,7 +91,7 @@ BENCHMARK(BM_Ib3dStep)
     ->ArgsProduct({{1}, {0, 1}, {4, 8, 12, 16}, {1}})
     ->Args({0, 0, 16, 1})
     ->Args({0, 0, 16, 2})
-    ->Args({1, 1, 16, 2})
+    ->Args({1, 0, 16, 2})
     ->Iterations(8)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

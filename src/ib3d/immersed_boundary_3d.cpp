@@ -150,8 +150,9 @@ CoupledStepReport3d ImmersedBoundary3d::step_semi_implicit(double dt_s) {
   velocity_.resize(n);
   transfer_.interpolate(fluid_.state().velocity, x, velocity_);
   r.transfer_s += seconds_since(t0);
-  const Eigen::VectorXd rhs = dt_s * flatten(velocity_) - x0;
-  const Eigen::VectorXd e = solve_correction(dt_s, rhs, r);
+  const Eigen::VectorXd predicted = dt_s * flatten(velocity_);  // the increment with the guess's forces
+  const Eigen::VectorXd rhs = predicted - x0;
+  const Eigen::VectorXd e = solve_correction(dt_s, rhs, predicted.norm(), r);
   last_increment_ = x0 + e;
   // The end-of-step force increment K e, projected, joins the flow.
   t0 = Clock::now();
@@ -170,7 +171,8 @@ CoupledStepReport3d ImmersedBoundary3d::step_semi_implicit(double dt_s) {
   return r;
 }
 
-Eigen::VectorXd ImmersedBoundary3d::solve_correction(double dt_s, const Eigen::VectorXd& rhs, CoupledStepReport3d& r) {
+Eigen::VectorXd ImmersedBoundary3d::solve_correction(double dt_s, const Eigen::VectorXd& rhs, double increment_norm,
+                                                     CoupledStepReport3d& r) {
   const auto t0 = Clock::now();
   const bool preconditioned = prepare_preconditioner(dt_s);
   const double dt2 = dt_s * dt_s;
@@ -187,9 +189,13 @@ Eigen::VectorXd ImmersedBoundary3d::solve_correction(double dt_s, const Eigen::V
     out = z - dt2 * response;
   };
   Eigen::VectorXd y, coefficients;
-  // From zero, without restarts (the Krylov basis holds 3N numbers a vector: small beside a field).
-  const ode::GmresReport g = ode::gmres_from_zero(op, rhs, y, coefficients, settings_.krylov_tolerance,
-                                                  settings_.krylov_max_iterations, settings_.krylov_max_iterations);
+  // The residual is asked below tolerance × |ΔX| (the increment's size, not the guess's residual's:
+  // a good guess needs few iterations). From zero, without restarts (a Krylov vector holds 3N
+  // numbers: small beside a field).
+  const double rhs_norm = rhs.norm();
+  const double tolerance = rhs_norm > 0.0 ? settings_.krylov_tolerance * std::max(increment_norm, rhs_norm) / rhs_norm : 1.0;
+  const ode::GmresReport g = ode::gmres_from_zero(op, rhs, y, coefficients, tolerance, settings_.krylov_max_iterations,
+                                                  settings_.krylov_max_iterations);
   r.krylov_iterations = g.iterations;
   r.relative_residual = g.relative_residual;
   r.converged = g.converged;

@@ -42,7 +42,7 @@ struct CouplingSettings3d {
   Scheme3d scheme = Scheme3d::semi_implicit;
   coupling::Kernel kernel = coupling::Kernel::peskin4;
   Preconditioner3d preconditioner = Preconditioner3d::none;  ///< self_mobility measured slower (docs/three-d.md)
-  double krylov_tolerance = 1e-6;  ///< relative residual of the semi-implicit solve (as in 2D)
+  double krylov_tolerance = 1e-6;  ///< the semi-implicit solve's residual, relative to the increment ΔX
   int krylov_max_iterations = 200;
   int threads = 1;  ///< spreading and interpolation (0: all cores); the bits do not depend on it
 };
@@ -80,7 +80,7 @@ class ImmersedBoundary3d {
   /// Forces (N) into the fluid's body acceleration (zeroed first), then the fluid step.
   void step_fluid_with_forces(double dt_s, std::span<const Vec3> force, CoupledStepReport3d& r);
   /// Stage 3 of the semi-implicit step: GMRES for the correction e of the increment's guess.
-  Eigen::VectorXd solve_correction(double dt_s, const Eigen::VectorXd& rhs, CoupledStepReport3d& r);
+  Eigen::VectorXd solve_correction(double dt_s, const Eigen::VectorXd& rhs, double increment_norm, CoupledStepReport3d& r);
   /// M = I − Δt² r₀ K factored; false when the model gives no K (or no preconditioner is asked).
   bool prepare_preconditioner(double dt_s);
   /// scratch_ = P S f / (ρ V) with homogeneous boundaries (forces on unknown faces only).
