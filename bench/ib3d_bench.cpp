@@ -8,12 +8,18 @@
 //    anchors that move up and down (2 mm at 2 Hz), the fluid's step included.
 //    scheme 0 explicit, 1 semi-implicit; preconditioner 0 none, 1 self-mobility. Counters: markers,
 //    GMRES iterations and projections per step, the split (transfer, fluid, Krylov; ms).
+//  - BM_Ib3dUnprojectedPreconditioner/<radius cells>/<inner>: a study of a candidate preconditioner,
+//    M = I − Δt² (2/3) J S K/(ρV) (the response without the projection: spread and interpolation
+//    only), inverted exactly by an inner GMRES (to 1e-10), on the step's system for a random
+//    right-hand side (inner 0: plain GMRES). Counters: outer iterations (projections) and inner ones
+//    (spread–interpolation pairs).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "jellysim/ib3d/immersed_boundary_3d.hpp"
+#include "jellysim/ode/gmres.hpp"
 
 namespace {
 
@@ -93,6 +99,54 @@ BENCHMARK(BM_Ib3dStep)
     ->Args({0, 0, 16, 2})
     ->Args({1, 0, 16, 2})
     ->Iterations(8)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_Ib3dUnprojectedPreconditioner(benchmark::State& state) {
+  const auto x = quarter_sphere(static_cast<double>(state.range(0)));
+  Markers3d markers(x);
+  Tethers3d tethers(x, std::vector<double>(x.size(), 5.0));
+  SpringNet3d net(neighbour_springs(x, 0.75 * kCellM, 500.0), &tethers);
+  auto fluid = tank(1);
+  ImmersedBoundary3d ib(*fluid, markers, net);
+  const bool inner = state.range(1) != 0;
+  const double dt2 = 0.005 * 0.005, rho = 1000.0;
+  std::vector<Vec3> w, kw(x.size()), u(x.size());
+  auto k_times = [&](const Eigen::VectorXd& v) {
+    unflatten(v, w);
+    net.jacobian_times(0.0, x, w, kw);
+    return flatten(kw);
+  };
+  jellysim::fluid3d::Velocity3d acc(kTank);
+  const jellysim::ode::LinearOperator unprojected = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    unflatten(k_times(v), w);
+    for (auto& q : acc.c) std::fill(q.begin(), q.end(), 0.0);
+    ib.transfer().spread(x, w, rho, acc);
+    ib.transfer().interpolate(acc, x, u);
+    out = v - dt2 * (2.0 / 3.0) * flatten(u);
+  };
+  int inner_iterations = 0, outer_iterations = 0;
+  Eigen::VectorXd response;
+  const jellysim::ode::LinearOperator preconditioned = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(in.size());
+    if (inner) inner_iterations += jellysim::ode::gmres(unprojected, in, z, 1e-10, 500, 500).iterations;
+    else z = in;
+    ib.apply_response(k_times(z), response);
+    out = z - dt2 * response;
+  };
+  Eigen::VectorXd b(3 * static_cast<Eigen::Index>(x.size()));
+  for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = std::sin(1.7 * static_cast<double>(i) + 0.3 * std::cos(0.11 * static_cast<double>(i)));
+  for (auto _ : state) {
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(b.size());
+    outer_iterations = jellysim::ode::gmres(preconditioned, b, y, 1e-6, 300, 300).iterations;
+  }
+  state.counters["markers"] = static_cast<double>(x.size());
+  state.counters["outer_iterations"] = outer_iterations;
+  state.counters["inner_iterations"] = inner_iterations;
+}
+BENCHMARK(BM_Ib3dUnprojectedPreconditioner)
+    ->ArgsProduct({{8, 16}, {0, 1}})
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
