@@ -10,10 +10,11 @@
 //    backward Euler for the stiff elastic–fluid exchange. Unlike the 2D code, which tabulates R
 //    densely (one projection per marker unknown), the system is solved matrix-free by GMRES: one
 //    operator application is one spread → projection (FFT) → interpolation; the guess's forces ride
-//    with the fluid step. Right preconditioner (optional): M = I − Δt² r₀ K, r₀ the marker's analytic
+//    with the fluid step. Optional right preconditioner: M = I − Δt² r₀ K, r₀ the marker's analytic
 //    self-mobility, (d − 1)/d · (Σφ²)³ / (ρ V) — the kernel's self-overlap (Σ_i φ(r − i)² = 3/8 for
 //    Peskin's 4-point function, any r) times the part of an isotropic field the projection keeps —
-//    factored once per step as a sparse matrix when the force model assembles K.
+//    factored once per step as a sparse matrix when the force model assembles K. Measured slower than
+//    plain GMRES on spring nets (docs/three-d.md), so off by default.
 #include <chrono>
 #include <memory>
 #include <string_view>
@@ -68,7 +69,7 @@ class ImmersedBoundary3d {
   double time_s() const { return time_s_; }
   const CouplingSettings3d& settings() const { return settings_; }
   Transfer3d& transfer() { return transfer_; }
-  /// r₀ = (2/3) (Σφ²)³ / (ρ V) (s²/kg... m/s² per N): the analytic self-mobility.
+  /// r₀ = (2/3) (Σφ²)³ / (ρ V) (m/s² per N): the analytic self-mobility, R's diagonal in the open.
   double self_mobility() const;
   /// out = R f = J P S f / (ρ V): the marker accelerations (m/s²) the forces f (N, flattened
   /// x0 y0 z0 x1 …) give the fluid at rest, pressure included (one projection).
