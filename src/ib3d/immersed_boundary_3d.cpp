@@ -130,45 +130,64 @@ CoupledStepReport3d ImmersedBoundary3d::step_explicit(double dt_s) {
 // Backward Euler exchange: from the guess x0 (the last increment), the fluid steps with the forces
 // F + K x0 (u_L' = u_L + Δt P S (F + K x0)/(ρV)); the correction e = ΔX − x0 solves
 //   (I − Δt² R K) e = Δt J u_L' − x0,
-// and u^{n+1} = u_L' + Δt P S K e / (ρV).
+// and u^{n+1} = u_L' + Δt P S K e / (ρV). The stages below are that derivation's steps, in order.
 CoupledStepReport3d ImmersedBoundary3d::step_semi_implicit(double dt_s) {
   CoupledStepReport3d r;
   r.dt_s = dt_s;
-  const double t1 = time_s_ + dt_s;
+  SemiImplicitStep s;
+  linearise_forces(dt_s, s);
+  step_fluid_with_forces(dt_s, s.guess_forces, r);
+  build_right_hand_side(s, r);
+  const Eigen::VectorXd e = solve_correction(dt_s, s.rhs, s.predicted_norm, r);
+  last_increment_ = s.x0 + e;
+  const auto t0 = Clock::now();
+  apply_end_of_step_forces(s, e, r);
+  move_markers(dt_s);
+  r.krylov_s += seconds_since(t0);
+  return r;
+}
+
+void ImmersedBoundary3d::linearise_forces(double dt_s, SemiImplicitStep& s) {
+  // Forces at the end of the step (t + Δt), positions linearised about Xⁿ; the guess x0.
   const auto& x = markers_.position;
   const std::size_t n = x.size();
-  std::vector<Vec3> f0(n), kx0(n);
-  forces_.forces(t1, x, f0);
-  const Eigen::VectorXd x0 = last_increment_.size() == 3 * static_cast<Eigen::Index>(n)
-                                 ? last_increment_ : Eigen::VectorXd(dt_s * flatten(markers_.velocity));
-  unflatten(x0, work_);
-  forces_.jacobian_times(t1, x, work_, kx0);
+  s.dt = dt_s;
+  s.guess_forces.assign(n, Vec3{});
+  std::vector<Vec3> f0(n);
+  forces_.forces(time_s_ + dt_s, x, f0);
+  s.x0 = last_increment_.size() == 3 * static_cast<Eigen::Index>(n) ? last_increment_
+                                                                     : Eigen::VectorXd(dt_s * flatten(markers_.velocity));
+  unflatten(s.x0, work_);
+  forces_.jacobian_times(time_s_ + dt_s, x, work_, s.guess_forces);
   for (std::size_t m = 0; m < n; ++m)
-    for (std::size_t c = 0; c < 3; ++c) kx0[m][c] += f0[m][c];
-  step_fluid_with_forces(dt_s, kx0, r);
-  auto t0 = Clock::now();
-  velocity_.resize(n);
-  transfer_.interpolate(fluid_.state().velocity, x, velocity_);
+    for (std::size_t c = 0; c < 3; ++c) s.guess_forces[m][c] += f0[m][c];
+}
+
+void ImmersedBoundary3d::build_right_hand_side(SemiImplicitStep& s, CoupledStepReport3d& r) {
+  // Δt J u_L' (the increment the guess's forces give) − x0.
+  const auto t0 = Clock::now();
+  velocity_.resize(markers_.size());
+  transfer_.interpolate(fluid_.state().velocity, markers_.position, velocity_);
+  const Eigen::VectorXd predicted = s.dt * flatten(velocity_);
+  s.predicted_norm = predicted.norm();
+  s.rhs = predicted - s.x0;
   r.transfer_s += seconds_since(t0);
-  const Eigen::VectorXd predicted = dt_s * flatten(velocity_);  // the increment with the guess's forces
-  const Eigen::VectorXd rhs = predicted - x0;
-  const Eigen::VectorXd e = solve_correction(dt_s, rhs, predicted.norm(), r);
-  last_increment_ = x0 + e;
-  // The end-of-step force increment K e, projected, joins the flow.
-  t0 = Clock::now();
+}
+
+void ImmersedBoundary3d::apply_end_of_step_forces(const SemiImplicitStep& s, const Eigen::VectorXd& e,
+                                                  CoupledStepReport3d& r) {
+  // u += Δt P S K e / (ρV): the end-of-step force increment K e, projected, joins the flow.
+  const std::size_t n = markers_.size();
   unflatten(e, work_);
   std::vector<Vec3> ke(n);
-  forces_.jacobian_times(t1, x, work_, ke);
+  forces_.jacobian_times(time_s_ + s.dt, markers_.position, work_, ke);
   project_spread(ke);
   ++r.projections;
   fluid3d::Velocity3d& u = fluid_.mutable_state().velocity;
   for (std::size_t c = 0; c < 3; ++c)
-    for (std::size_t i = 0; i < u.c[c].size(); ++i) u.c[c][i] += dt_s * scratch_.c[c][i];
+    for (std::size_t i = 0; i < u.c[c].size(); ++i) u.c[c][i] += s.dt * scratch_.c[c][i];
   for (std::size_t m = 0; m < n; ++m)
-    for (std::size_t c = 0; c < 3; ++c) markers_.force[m][c] = kx0[m][c] + ke[m][c];
-  move_markers(dt_s);
-  r.krylov_s += seconds_since(t0);
-  return r;
+    for (std::size_t c = 0; c < 3; ++c) markers_.force[m][c] = s.guess_forces[m][c] + ke[m][c];
 }
 
 Eigen::VectorXd ImmersedBoundary3d::solve_correction(double dt_s, const Eigen::VectorXd& rhs, double increment_norm,

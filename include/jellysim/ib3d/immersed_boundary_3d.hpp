@@ -18,6 +18,7 @@
 #include <chrono>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -78,9 +79,23 @@ class ImmersedBoundary3d {
  private:
   CoupledStepReport3d step_explicit(double dt_s);
   CoupledStepReport3d step_semi_implicit(double dt_s);
+  /// What one semi-implicit step carries from stage to stage.
+  struct SemiImplicitStep {
+    double dt = 0.0;
+    Eigen::VectorXd x0;               ///< the increment's guess (the last increment)
+    std::vector<Vec3> guess_forces;   ///< F + K x0 (N), at t + Δt
+    Eigen::VectorXd rhs;              ///< Δt J u_L' − x0
+    double predicted_norm = 0.0;      ///< |Δt J u_L'|: the scale of the solve's tolerance
+  };
+  /// Stage 1: F at (t + Δt, Xⁿ), the guess x0 and the forces F + K x0 the fluid step takes along.
+  void linearise_forces(double dt_s, SemiImplicitStep& s);
+  /// Stage 3 (after the fluid step): the right-hand side Δt J u_L' − x0.
+  void build_right_hand_side(SemiImplicitStep& s, CoupledStepReport3d& r);
+  /// Stage 5 (after the solve): u += Δt P S K e / (ρV); the markers' forces F + K ΔX.
+  void apply_end_of_step_forces(const SemiImplicitStep& s, const Eigen::VectorXd& e, CoupledStepReport3d& r);
   /// Forces (N) into the fluid's body acceleration (zeroed first), then the fluid step.
   void step_fluid_with_forces(double dt_s, std::span<const Vec3> force, CoupledStepReport3d& r);
-  /// Stage 3 of the semi-implicit step: GMRES for the correction e of the increment's guess.
+  /// Stage 4 of the semi-implicit step: GMRES for the correction e of the increment's guess.
   Eigen::VectorXd solve_correction(double dt_s, const Eigen::VectorXd& rhs, double increment_norm, CoupledStepReport3d& r);
   /// M = I − Δt² r₀ K factored; false when the model gives no K (or no preconditioner is asked).
   bool prepare_preconditioner(double dt_s);
