@@ -2,11 +2,12 @@
 // the fluid's benchmarks (5 mm cells, water, walls on four sides, mirror planes at low x and z):
 //  - BM_Ib3dTransfer/<threads>: spreading and interpolating ~3000 markers (a sphere of radius 15.5
 //    cells, markers half a cell apart, its quarter) — one spread plus one interpolation.
-//  - BM_Ib3dStep/<scheme>/<preconditioner>/<radius cells>/<threads>: one coupled step (Δt = 5 ms) of
+//  - BM_Ib3dStep/<scheme>/<preconditioner>/<radius cells>/<threads>/<k>: one coupled step (Δt = 5 ms) of
 //    a quarter sphere of markers joined to their neighbours (within 0.75 cells) by springs (500 N/m;
 //    5 N/m for the explicit step, which is unstable with the stiff ones) and tethered (5 N/m) to
 //    anchors that move up and down (2 mm at 2 Hz), the fluid's step included.
-//    scheme 0 explicit, 1 semi-implicit; preconditioner 0 none, 1 self-mobility. Counters: markers,
+//    scheme 0 explicit, 1 semi-implicit; preconditioner 0 none, 1 self-mobility; the Krylov
+//    tolerance 10^−k (relative to the increment; 6 is the default). Counters: markers,
 //    GMRES iterations and projections per step, the split (transfer, fluid, Krylov; ms).
 //  - BM_Ib3dUnprojectedPreconditioner/<radius cells>/<inner>: a study of a candidate preconditioner,
 //    M = I − Δt² (2/3) J S K/(ρV) (the response without the projection: spread and interpolation
@@ -68,7 +69,7 @@ void BM_Ib3dStep(benchmark::State& state) {
   CouplingSettings3d cs;
   cs.scheme = explicit_step ? Scheme3d::explicit_euler : Scheme3d::semi_implicit;
   cs.preconditioner = state.range(1) == 0 ? Preconditioner3d::none : Preconditioner3d::self_mobility;
-  cs.krylov_tolerance = 1e-6;
+  cs.krylov_tolerance = std::pow(10.0, -static_cast<double>(state.range(4)));
   cs.threads = static_cast<int>(state.range(3));
   ImmersedBoundary3d ib(*fluid, markers, net, cs);
   const double dt = 0.005;
@@ -94,10 +95,12 @@ void BM_Ib3dStep(benchmark::State& state) {
 // Semi-implicit, both preconditioners, marker counts from ~200 to ~3200 (sphere radius 4 to 16
 // cells), one thread; then the explicit step and two threads at ~3000 markers.
 BENCHMARK(BM_Ib3dStep)
-    ->ArgsProduct({{1}, {0, 1}, {4, 8, 12, 16}, {1}})
-    ->Args({0, 0, 16, 1})
-    ->Args({0, 0, 16, 2})
-    ->Args({1, 0, 16, 2})
+    ->ArgsProduct({{1}, {0, 1}, {4, 8, 12, 16}, {1}, {6}})
+    ->Args({0, 0, 16, 1, 6})
+    ->Args({0, 0, 16, 2, 6})
+    ->Args({1, 0, 16, 2, 6})
+    ->Args({1, 0, 16, 1, 4})
+    ->Args({1, 0, 16, 1, 3})
     ->Iterations(8)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
