@@ -5,7 +5,8 @@
 // along z in cavity sides (default 1: the cube), "periodic" makes z periodic (the 2D cavity,
 // extruded). With Re 100, 400 or 1000 the largest differences to Ghia et al.'s 2D centrelines are
 // printed too: a check for the periodic span, only a sanity check for a walled one (the side walls
-// slow the flow).
+// slow the flow). The cube (SPAN 1, walled) at Re 1000 is compared with Albensoeder & Kuhlmann's
+// (2005) published 3D centrelines.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -24,6 +25,14 @@ void print_ghia_differences(const fluid3d::CavityResult3d& r, double re) {
   if (u.empty()) return;
   std::fprintf(stderr, "largest difference to Ghia et al. (2D, Re %g): u %.4f, v %.4f\n", re,
                fluid3d::largest_profile_difference(r.centreline_u, u), fluid3d::largest_profile_difference(r.centreline_v, v));
+}
+
+/// The walled cube at Re 1000 against Albensoeder & Kuhlmann (2005), Tables 5 and 6 (3D, published).
+void print_albensoeder_kuhlmann_differences(const fluid3d::CavitySettings3d& s, const fluid3d::CavityResult3d& r) {
+  if (s.reynolds != 1000.0 || s.span != 1.0 || s.periodic_span) return;
+  std::fprintf(stderr, "largest difference to Albensoeder & Kuhlmann (2005, the cube at Re 1000): u %.4f, v %.4f\n",
+               fluid3d::largest_profile_difference(r.centreline_u, fluid3d::kAlbensoederKuhlmannRe1000CentrelineU),
+               fluid3d::largest_profile_difference(r.centreline_v, fluid3d::kAlbensoederKuhlmannRe1000CentrelineV));
 }
 
 }  // namespace
@@ -50,6 +59,7 @@ int main(int argc, char** argv) {
                x_vmin, vmax, x_vmax);
   std::fprintf(stderr, "mid-span asymmetry %.1e m/s, max |div u| %.1e 1/s\n", r.symmetry_error, r.max_divergence);
   print_ghia_differences(r, s.reynolds);
+  print_albensoeder_kuhlmann_differences(s, r);
   std::printf("line,position,velocity\n");
   for (const auto& p : r.centreline_u) std::printf("u_vertical,%.6f,%.6f\n", p.position, p.velocity);
   for (const auto& p : r.centreline_v) std::printf("v_horizontal,%.6f,%.6f\n", p.position, p.velocity);

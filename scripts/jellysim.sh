@@ -54,12 +54,13 @@ build_release() { build build/release -DCMAKE_BUILD_TYPE=Release -DJELLYSIM_WERR
 # programs, each with its own module's libraries (tests/CMakeLists.txt), and runs only the threaded
 # tests. In `test`: the worker pool, the serial writer thread and the path chooser (core), the
 # mobility table built on threads (coupling), the SPH evaluation and backward Euler on threads (sph),
-# the 3D fluid's step on two threads (fluid3d).
+# the 3D fluid's step on two threads (fluid3d), the 3D immersed boundary's spreading, interpolation and
+# coupled step on two threads (ib3d).
 # `tsan` adds the command line's threaded batch and one-versus-two-threads determinism runs, which
 # need the program and so every module built under ThreadSanitizer (the batch's threaded runner is in
 # `experiments`, nearly the whole program: too slow for `test`).
-TSAN_LIBRARY_PROGRAMS=(test_core test_coupling test_sph test_fluid3d)
-TSAN_LIBRARY_TESTS='^(WorkerPool|SerialWorker|PathChooser|Fluid3dThreads)\.|^FftPressure3d\.RepeatedAndThreaded|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^SphBackwardEuler\.RunsAdaptively'
+TSAN_LIBRARY_PROGRAMS=(test_core test_coupling test_sph test_fluid3d test_ib3d)
+TSAN_LIBRARY_TESTS='^(WorkerPool|SerialWorker|PathChooser|Fluid3dThreads|Transfer3dThreads|ImmersedBoundary3dThreads)\.|^FftPressure3d\.RepeatedAndThreaded|^MobilityTable\.Threads|^SphFluid\.Threads|^SphScene\..*Threads|^SphBackwardEuler\.RunsAdaptively'
 TSAN_CLI_TESTS='^BatchCli\.ThreadedBatch|^Determinism\..*Threads'
 # build_tsan PROGRAM...
 build_tsan() {

@@ -36,7 +36,8 @@ void prepare_loop(const jellyfish::LoopSettings& loop, jellyfish::SwimSettings& 
 /// failure when the stroke did not repeat within the tolerance (the loop is then cut at the best match).
 std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyfish::SwimSettings& settings,
                                const SwimRecording& rec, const io::OutputDir& out, nlohmann::ordered_json& figures,
-                               std::vector<jellyfish::SliceFrame>& frames, std::vector<std::vector<Vec2>>& tracers) {
+                               std::vector<jellyfish::SliceFrame>& frames, std::vector<std::vector<Vec2>>& tracers,
+                               render::PipelineSettings& pipeline) {
   const jellyfish::JellyfishSpec& j = settings.jellyfish();
   const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, j.frequency_hz);
   const jellyfish::LoopSearch search = jellyfish::search_loop(rec.frames, per_cycle, loop, j.diameter_m, j.frequency_hz);
@@ -59,7 +60,9 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
                      {"root_motion", loop.root_motion == jellyfish::RootMotion::remove ? "remove" : "constant"},
                      {"travel", {clip.travel.x, clip.travel.y}},
                      {"root_velocity", {clip.travel.x / clip.duration_s, clip.travel.y / clip.duration_s}}};
-  clip.frames.pop_back();  // the closing frame is the first again
+  clip.frames.pop_back();  // the closing frame is the first again: the .glb's closing key (below)
+  const Vec2 kept = loop.root_motion == jellyfish::RootMotion::remove ? Vec2{} : clip.travel;
+  pipeline.loop_travel_m = geometry::Vec3{kept.x, kept.y, 0.0};  // the slice plane is the 3D z = 0 plane
   frames = std::move(clip.frames);
   if (!tracers.empty()) tracers.assign(count, rec.tracers.at(first));
   if (search.periodic_cycle > 0) return {};
@@ -85,6 +88,7 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
   pipeline.look = render::export_look(pipeline.style);
   options.record_tracers = pipeline.marine_snow && settings.tank.tracers_per_side > 0;
   return [settings, options, pipeline, loop, ctx](const io::OutputDir& out) {
+    render::PipelineSettings run_pipeline = pipeline;  // a loop adds its travel (cut_animation_loop)
     // With checkpoints, the simulation's end stays checkpointed until the animation is whole.
     const SwimRecording rec = run_swim(settings, options, &out, ctx.progress, ctx.checkpoints.get());
     write_metrics_csv(out, rec.metrics);
@@ -98,13 +102,14 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ct
     school.insert(school.end(), rec.others.begin(), rec.others.end());
     std::vector<std::vector<Vec2>> tracers = rec.tracers;
     std::string failure = rec.stats.failure;
-    if (loop.enabled && failure.empty()) failure = cut_animation_loop(loop, settings, rec, out, figures, school[0], tracers);
+    if (loop.enabled && failure.empty())
+      failure = cut_animation_loop(loop, settings, rec, out, figures, school[0], tracers, run_pipeline);
     std::vector<std::uint64_t> seeds;
     for (const jellyfish::JellyfishSpec& j : settings.school)
       seeds.push_back(pipeline.geometry.noise.seed + static_cast<std::uint64_t>(j.noise_seed) - 1);
     if (ctx.render_progress) ctx.render_progress(0, school[0].size());  // the render stage starts
     const render::AnimationOutputs anim = render::write_animation_outputs(
-        school, seeds, pipeline, out,
+        school, seeds, run_pipeline, out,
         [&ctx](std::size_t done, std::size_t total) {
           if (ctx.render_progress) ctx.render_progress(done, total);
         },

@@ -319,6 +319,15 @@ void validate_glb_bodies(const std::vector<GlbBody>& bodies, const std::vector<d
   }
 }
 
+/// A loop's closing frame (glb_bytes's closes_loop): at least two frames before it, and every
+/// body's vertices there frame 0's, relative to its root.
+void check_loop_closure(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s) {
+  if (times_s.size() < 3) throw InputError("glb: a loop needs two frames and its closing frame");
+  for (const GlbBody& body : bodies)
+    if (body.positions.back() != body.positions.front())
+      throw InputError("glb: " + body.name + "'s closing frame of the loop is not its first frame");
+}
+
 /// The frame times from the first, in single precision (strictly increasing there, or InputError).
 std::vector<float> single_precision_times(const std::vector<double>& times_s) {
   std::vector<float> times;
@@ -386,14 +395,18 @@ PrimitiveVertices primitive_vertices(const GlbBody& body, const MeshPart& part) 
 /// a mesh node (the quantization scale), its frames after the first as morph targets.
 class GlbScene {
  public:
-  GlbScene(const std::vector<double>& times_s, const std::vector<GlbMaterial>& materials, int every)
-      : materials_(materials), times_s_(times_s), frames_(times_s.size()), kept_(kept_frames(frames_, every)) {
+  /// `closes_loop`: the last frame is frame 0 again (a seamless loop's closing key): no morph
+  /// target of its own, its weights all 0 (the base, frame 0's shape), not counted in frame_count.
+  GlbScene(const std::vector<double>& times_s, const std::vector<GlbMaterial>& materials, int every, bool closes_loop)
+      : materials_(materials), times_s_(times_s), frames_(times_s.size()), closes_loop_(closes_loop),
+        kept_(kept_frames(frames_ - (closes_loop ? 1 : 0), every)) {
     const std::vector<float> times = single_precision_times(times_s);
     all_times_ = frames_ > 1 ? b_.scalars(times, true) : -1;
     if (!kept_.empty()) {
       std::vector<float> t{times.front()};
       for (std::size_t k : kept_) t.push_back(times[k]);
-      kept_times_ = kept_.size() + 1 == frames_ ? all_times_ : b_.scalars(t, true);
+      if (closes_loop_) t.push_back(times.back());
+      kept_times_ = t.size() == frames_ ? all_times_ : b_.scalars(t, true);
     }
   }
 
@@ -512,11 +525,13 @@ class GlbScene {
     channels_.push_back({{"sampler", samplers_.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
   }
 
-  /// The morph weights' animation: frame 0 with no target, then one target after another.
+  /// The morph weights' animation: frame 0 with no target, then one target after another (and,
+  /// closing a loop, frame 0 again: no target).
   void animate_weights(int mesh_node) {
     std::vector<std::uint8_t> weights;
     for (std::size_t key = 0; key <= kept_.size(); ++key)
       for (std::size_t t = 1; t <= kept_.size(); ++t) weights.push_back(t == key ? 255 : 0);
+    if (closes_loop_) weights.insert(weights.end(), kept_.size(), 0);
     samplers_.push_back({{"input", kept_times_}, {"output", b_.unit_bytes(weights)}, {"interpolation", "LINEAR"}});
     channels_.push_back({{"sampler", samplers_.size() - 1}, {"target", {{"node", mesh_node}, {"path", "weights"}}}});
   }
@@ -535,14 +550,16 @@ class GlbScene {
   /// The frame rate and count, for tools that set a scene up from the file (blender_import.py).
   nlohmann::json asset(double frames_per_second) const {
     nlohmann::json a = {{"version", "2.0"}, {"generator", "jellysim " JELLYSIM_VERSION}};
-    a["extras"] = {{"frame_count", frames_}};
+    a["extras"] = {{"frame_count", frames_ - (closes_loop_ ? 1 : 0)}};
     if (frames_per_second > 0.0) a["extras"]["frames_per_second"] = frames_per_second;
+    if (closes_loop_) a["extras"]["loop"] = true;
     return a;
   }
 
   const std::vector<GlbMaterial>& materials_;
   const std::vector<double>& times_s_;
   std::size_t frames_;
+  bool closes_loop_ = false;
   std::vector<std::size_t> kept_;
   GlbBuilder b_;
   int all_times_ = -1, kept_times_ = -1;
@@ -571,9 +588,10 @@ std::vector<GlbMaterial> glb_materials(const ExportLook& look) {
 
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
                       const std::vector<GlbMaterial>& materials, int every, double frames_per_second,
-                      const ExportCamera& camera) {
+                      const ExportCamera& camera, bool closes_loop) {
   validate_glb_bodies(bodies, times_s, every);
-  GlbScene scene(times_s, materials, every);
+  if (closes_loop) check_loop_closure(bodies, times_s);
+  GlbScene scene(times_s, materials, every, closes_loop);
   for (const GlbBody& body : bodies) scene.add_body(body);
   scene.add_camera(camera);
   return scene.bytes(frames_per_second);

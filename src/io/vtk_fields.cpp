@@ -1,7 +1,12 @@
 #include "jellysim/io/vtk_fields.hpp"
 
+#include "jellysim/fluid3d/fluid_solver_3d.hpp"
+
 #include <zlib.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -149,6 +154,76 @@ void write_flow_vti(std::ostream& out, const fluid::FlowState& state) {
 }
 
 void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& state) {
+  write_to_path(path, [&](std::ostream& out) { write_flow_vti(out, state); });
+}
+
+namespace {
+
+/// The velocity at the centres of the 3D grid's cells (x fastest): each component the mean of the
+/// cell's two faces along its axis.
+std::vector<std::array<double, 3>> centre_velocities_3d(const fluid3d::FlowState3d& s) {
+  const fluid3d::Grid3d& g = s.grid;
+  std::vector<std::array<double, 3>> v;
+  v.reserve(g.cell_count());
+  fluid3d::for_each_interior_cell(g, [&](std::size_t I, int, int, int) {
+    std::array<double, 3> c{};
+    for (int d = 0; d < 3; ++d) c[d] = 0.5 * (s.velocity.c[d][I] + s.velocity.c[d][I + g.stride(d)]);
+    v.push_back(c);
+  });
+  return v;
+}
+
+/// ∂(component c)/∂(axis d) at cell (i, j, k) from the centre velocities: central, one-sided at
+/// the first and last cell along d.
+double centre_derivative_3d(const fluid3d::Grid3d& g, const std::vector<std::array<double, 3>>& v, int c, int d,
+                            fluid3d::Index3 at) {
+  const auto flat = [&](fluid3d::Index3 p) {
+    return static_cast<std::size_t>(p[0]) +
+           static_cast<std::size_t>(g.n(0)) * (static_cast<std::size_t>(p[1]) + static_cast<std::size_t>(g.n(1)) * static_cast<std::size_t>(p[2]));
+  };
+  fluid3d::Index3 lo = at, hi = at;
+  lo[d] = std::max(at[d] - 1, 0);
+  hi[d] = std::min(at[d] + 1, g.n(d) - 1);
+  return (v[flat(hi)][c] - v[flat(lo)][c]) / ((hi[d] - lo[d]) * g.h(d));
+}
+
+}  // namespace
+
+void write_flow_vti(std::ostream& out, const fluid3d::FlowState3d& state) {
+  const PrecisionGuard precision(out);
+  const fluid3d::Grid3d& g = state.grid;
+  const std::vector<std::array<double, 3>> centre = centre_velocities_3d(state);
+  std::vector<double> velocity, speed, vorticity, pressure, divergence;
+  for (const auto& c : centre) {
+    velocity.insert(velocity.end(), c.begin(), c.end());
+    speed.push_back(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+  }
+  fluid3d::for_each_interior_cell(g, [&](std::size_t I, int i, int j, int k) {
+    const auto d = [&](int c, int axis) { return centre_derivative_3d(g, centre, c, axis, {i, j, k}); };
+    vorticity.insert(vorticity.end(), {d(2, 1) - d(1, 2), d(0, 2) - d(2, 0), d(1, 0) - d(0, 1)});
+    pressure.push_back(state.pressure[I]);
+    divergence.push_back(fluid3d::divergence_at(g, state.velocity, i, j, k));
+  });
+  AppendedArrays arrays;
+  const std::string in = "        ";
+  std::string cells = arrays.element(in, {"velocity", 3, std::move(velocity), false, true});
+  cells += arrays.element(in, {"speed", 1, std::move(speed), false, true});
+  cells += arrays.element(in, {"vorticity", 3, std::move(vorticity), false, true});
+  cells += arrays.element(in, {"pressure", 1, std::move(pressure), false, true});
+  cells += arrays.element(in, {"divergence", 1, std::move(divergence), false, true});
+  const auto& o = g.origin();
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"ImageData\"" << kFileAttributes << ">\n"
+      << "  <ImageData WholeExtent=\"0 " << g.n(0) << " 0 " << g.n(1) << " 0 " << g.n(2) << "\" Origin=\"" << o[0]
+      << ' ' << o[1] << ' ' << o[2] << "\" Spacing=\"" << g.h(0) << ' ' << g.h(1) << ' ' << g.h(2) << "\">\n"
+      << "    <Piece Extent=\"0 " << g.n(0) << " 0 " << g.n(1) << " 0 " << g.n(2) << "\">\n"
+      << "      <CellData Scalars=\"speed\" Vectors=\"velocity\">\n"
+      << cells << "      </CellData>\n    </Piece>\n  </ImageData>\n";
+  arrays.write(out);
+  out << "</VTKFile>\n";
+}
+
+void write_flow_vti(const std::filesystem::path& path, const fluid3d::FlowState3d& state) {
   write_to_path(path, [&](std::ostream& out) { write_flow_vti(out, state); });
 }
 

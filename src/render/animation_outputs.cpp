@@ -177,10 +177,10 @@ class CacheRecorder {
   }
   /// The bodies of the .glb: each jellyfish about its pivot with its root motion, the obstacles
   /// at the origin.
-  std::vector<io::GlbBody> glb_bodies() const {
+  std::vector<io::GlbBody> glb_bodies(bool velocities) const {
     std::vector<io::GlbBody> bodies;
     for (const Body& b : bodies_) {
-      io::GlbBody g{b.name, b.rest, {}, b.roots, b.uv, true};
+      io::GlbBody g{b.name, b.rest, {}, b.roots, b.uv, velocities};
       for (Vec3& p : g.first.positions) p = p - b.roots.front();
       for (std::size_t k = 0; k < b.frames.size(); ++k) {
         std::vector<Vec3> local = b.frames[k];
@@ -232,7 +232,7 @@ class CacheRecorder {
     {
       std::vector<io::UsdBody> stage;
       for (const Body* b : all) {
-        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}, b->uv, true};
+        io::UsdBody u{b->name, b->rest, b->roots, {}, {0.8, 0.9, 1.0}, b->uv, s.vertex_velocities};
         if (b->name == "obstacles") u.colour = {0.23, 0.2, 0.17};
         for (std::size_t k = 0; k < b->frames.size(); ++k) {
           std::vector<Vec3> local = b->frames[k];
@@ -669,14 +669,32 @@ class AnimationWriter {
   }
 
   void write_glb() {
-    const std::string glb =
-        io::glb_bytes(caches_.glb_bodies(), animation_.times_s, io::glb_materials(look()), s_.glb_every, s_.fps,
-                      export_camera());
+    std::vector<io::GlbBody> bodies = caches_.glb_bodies(s_.vertex_velocities);
+    std::vector<double> times = animation_.times_s;
+    io::ExportCamera camera = export_camera();
+    if (s_.loop_travel_m) close_loop(bodies, times, camera);
+    const std::string glb = io::glb_bytes(bodies, times, io::glb_materials(look()), s_.glb_every, s_.fps, camera,
+                                          s_.loop_travel_m.has_value());
     out_.write_text("jellyfish.glb", glb);
     out_.write_text("blender_import.py", kBlenderImport);
     result_.files.insert(result_.files.end(), {"jellyfish.glb", "blender_import.py"});
     result_.glb_bytes = glb.size();
     if (s_.viewer) write_viewer(s_, glb, out_, result_);
+  }
+
+  /// A loop's closing key for the .glb: frame 0 again one frame after the last (at N / fps on the
+  /// frame clock), the jellyfish's roots and a follow camera moved on by the loop's travel.
+  void close_loop(std::vector<io::GlbBody>& bodies, std::vector<double>& times, io::ExportCamera& camera) const {
+    const Vec3 travel = *s_.loop_travel_m;
+    for (io::GlbBody& b : bodies) {
+      b.positions.push_back(b.positions.front());
+      if (!b.root.empty()) b.root.push_back(b.root.front() + travel);
+    }
+    times.push_back(times.front() + static_cast<double>(times.size()) / s_.fps);
+    if (camera.frames.empty()) return;
+    io::CameraFrame c = camera.frames.front();
+    if (s_.camera == "follow") c = {c.eye + travel, c.target + travel, c.up};
+    camera.frames.push_back(c);
   }
 
   /// The settings' look, the tissue thickness from the first slice unless set.

@@ -86,6 +86,9 @@ std::vector<Parameter> output_parameters() {
       number("render.snow_density", "1.0", "", unit, "fraction of the tracers near the bell drawn as marine snow"),
       boolean("render.exr", "false",
               "frames/frame_0000.exr: OpenEXR with beauty (RGBA, linear half), depth (Z, m) and velocity (px per frame)"),
+      boolean("render.vertex_velocities", "true",
+              "per-vertex velocities (m/s, for motion blur) in jellyfish.glb (_VELOCITY) and jellyfish.usda "
+              "(velocities); false: a smaller .glb"),
       boolean("render.pc2", "true", "caches/jellyfish_N.obj rest mesh + .pc2 point cache per jellyfish (and obstacles)"),
       boolean("render.mdd", "false", "caches/*.mdd point caches (big-endian; Maya, Houdini, 3ds Max)"),
       boolean("render.usda", "false", "jellyfish.usda: USD stage, root motion + time-sampled points (text, large)"),
@@ -240,6 +243,7 @@ render::PipelineSettings read_render_settings(const config::Config& c) {
   s.snow_size_m = r.number("render.snow_size");
   s.snow_density = r.number("render.snow_density");
   s.exr = r.boolean("render.exr");
+  s.vertex_velocities = r.boolean("render.vertex_velocities");
   s.pc2 = r.boolean("render.pc2");
   s.mdd = r.boolean("render.mdd");
   s.usda = r.boolean("render.usda");

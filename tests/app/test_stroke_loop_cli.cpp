@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "../cli_runner.hpp"
+#include "jellysim/io/mesh_files.hpp"
 
 namespace cli = jellysim::testing;
 namespace fs = std::filesystem;
@@ -52,6 +54,22 @@ double rms_over_diameter(const std::vector<Point>& a, const std::vector<Point>& 
   double sum = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) sum += std::pow(b[i].x - a[i].x, 2) + std::pow(b[i].y - a[i].y, 2);
   return std::sqrt(sum / static_cast<double>(a.size())) / 0.04;
+}
+
+/// Where accessor `index` of a .glb starts in its binary chunk, and its element count.
+std::pair<const char*, std::size_t> accessor_data(const jellysim::io::GlbContents& glb, std::size_t index) {
+  const nlohmann::json& a = glb.json["accessors"][index];
+  const nlohmann::json& view = glb.json["bufferViews"][a["bufferView"].get<std::size_t>()];
+  return {glb.bin.data() + view["byteOffset"].get<std::size_t>() + a.value("byteOffset", 0), a["count"].get<std::size_t>()};
+}
+
+/// The float values of a glTF accessor (its elements one after another), as doubles.
+std::vector<double> float_accessor(const jellysim::io::GlbContents& glb, std::size_t index) {
+  const auto [data, count] = accessor_data(glb, index);
+  const std::string& type = glb.json["accessors"][index]["type"];
+  std::vector<float> v((type == "SCALAR" ? 1 : type == "VEC3" ? 3 : 4) * count);
+  std::memcpy(v.data(), data, 4 * v.size());
+  return {v.begin(), v.end()};
 }
 
 }  // namespace
@@ -147,4 +165,52 @@ TEST(LoopCli, BadLoopSettingsAreRefusedNamingTheOption) {
   }
   fs::remove_all(dir);
   fs::remove(scene);
+}
+
+// The .glb of a loop ends with its closing key: frame 0 again one frame after the last, so that a
+// player looping the clip over its duration (three.js in viewer.html) wraps without a jump. Its
+// morph weights are all 0 (the base: frame 0's shape); with the root motion kept the root moves on
+// by the loop's travel, and its last step is one of the loop's ordinary steps (the slice plane is
+// the 3D z = 0 plane); frame_count says the frames to play (43), without the closing key.
+TEST(LoopCli, TheGlbEndsWithTheClosingKeySoThatItLoopsWithoutAJump) {
+  const fs::path dir = cli::fresh_scratch_dir("loop_glb");
+  const cli::CliResult r = cli::run_jellysim(kLoopRun + " --loop 1 --set render.loop_root_motion=constant "
+                                                        "--set render.glb=true --set render.png_frames=false --out " +
+                                             dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  const jellysim::io::GlbContents glb = jellysim::io::parse_glb(cli::read_text_file(dir / "jellyfish.glb"));
+  EXPECT_EQ(glb.json["asset"]["extras"]["frame_count"], 43);
+  EXPECT_EQ(glb.json["asset"]["extras"]["loop"], true);
+  const nlohmann::json& swim = glb.json["animations"][0];
+  std::vector<double> roots, times;
+  std::size_t weight_keys = 0;
+  const std::uint8_t* last_weights = nullptr;
+  const std::size_t targets = glb.json["meshes"][0]["weights"].size();
+  for (const auto& channel : swim["channels"]) {
+    const auto& sampler = swim["samplers"][channel["sampler"].get<std::size_t>()];
+    if (channel["target"]["node"] == 0 && channel["target"]["path"] == "translation") {  // the jellyfish's root
+      roots = float_accessor(glb, sampler["output"]);
+      times = float_accessor(glb, sampler["input"]);
+    }
+    if (channel["target"]["node"] == 1 && channel["target"]["path"] == "weights") {  // its mesh's morph weights
+      weight_keys = accessor_data(glb, sampler["input"]).second;
+      last_weights = reinterpret_cast<const std::uint8_t*>(accessor_data(glb, sampler["output"]).first) +
+                     (weight_keys - 1) * targets;
+    }
+  }
+  ASSERT_EQ(times.size(), 44u);
+  EXPECT_FLOAT_EQ(static_cast<float>(times.back()), static_cast<float>(1.0 / 0.7));  // 43 frames of 1 / (43 · 0.7) s
+  ASSERT_EQ(roots.size(), 3 * 44u);
+  EXPECT_NEAR(roots[3 * 43] - roots[0], s["loop"]["travel"][0].get<double>(), 1e-6);
+  EXPECT_NEAR(roots[3 * 43 + 1] - roots[1], s["loop"]["travel"][1].get<double>(), 1e-6);
+  EXPECT_EQ(roots[3 * 43 + 2], roots[2]);
+  double largest_step = 0.0;
+  for (std::size_t k = 0; k + 1 < 43; ++k)
+    largest_step = std::max(largest_step, std::hypot(roots[3 * k + 3] - roots[3 * k], roots[3 * k + 4] - roots[3 * k + 1]));
+  EXPECT_LE(std::hypot(roots[3 * 43] - roots[3 * 42], roots[3 * 43 + 1] - roots[3 * 42 + 1]), largest_step);
+  ASSERT_NE(last_weights, nullptr);
+  EXPECT_EQ(weight_keys, targets + 2);  // frame 0, each target, the closing key
+  for (std::size_t t = 0; t < targets; ++t) EXPECT_EQ(last_weights[t], 0) << t;
+  fs::remove_all(dir);
 }

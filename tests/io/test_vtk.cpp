@@ -20,6 +20,7 @@
 #include "jellysim/fluid/boundary.hpp"
 #include "jellysim/fluid/diagnostics.hpp"
 #include "jellysim/fluid/reference_data.hpp"
+#include "jellysim/fluid3d/grid_3d.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 
 namespace jellysim::io {
@@ -125,6 +126,45 @@ TEST(VtkOutput, TimeSeriesListsEveryFrameWithNamedParts) {
   EXPECT_EQ(count(out.str(), "<DataSet"), 3u);
   EXPECT_NE(out.str().find("timestep=\"0.5\" group=\"\" part=\"1\" name=\"tracers\" file=\"tracers_0001.vtp\""),
             std::string::npos);
+}
+
+// The 3D flow's .vti (issue 40): a solid-body rotation about z with a uniform axial speed, u =
+// (−ω(y − y0), ω(x − x0), W), is linear, so the centre averages, the central and one-sided
+// differences are exact: vorticity (0, 0, 2ω) and divergence 0 in every cell, the velocity at the
+// centres the field's, each to single precision; the extent, origin and spacing those of the grid.
+TEST(VtkOutput, ThreeDimensionalImageDataHoldsTheCentreVelocityAndVorticity) {
+  const fluid3d::Grid3d g({4, 3, 5}, {0.4, 0.6, 0.5}, {-0.2, 0.0, 0.1});
+  fluid3d::FlowState3d s(g);
+  const double omega = 1.5, w = 0.25, x0 = 0.05, y0 = 0.2;
+  const auto field = [&](int c, const fluid3d::Vec3& p) {
+    return c == 0 ? -omega * (p[1] - y0) : c == 1 ? omega * (p[0] - x0) : w;
+  };
+  for (int c = 0; c < 3; ++c)
+    for (int k = -1; k <= g.n(2); ++k)
+      for (int j = -1; j <= g.n(1); ++j)
+        for (int i = -1; i <= g.n(0); ++i) s.velocity.c[c][g.index(i, j, k)] = field(c, g.position(c, i, j, k));
+  fluid3d::for_each_interior_cell(g, [&](std::size_t I, int i, int, int) { s.pressure[I] = 10.0 * i; });
+  std::ostringstream out;
+  write_flow_vti(out, s);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("WholeExtent=\"0 4 0 3 0 5\""), std::string::npos);
+  EXPECT_NE(text.find("Origin=\"-0.20000000000000001 0 0.10000000000000001\""), std::string::npos);
+  EXPECT_EQ(count(text, "type=\"Float32\""), 5u);
+  const auto velocity = read_array<float>(text, "velocity"), vorticity = read_array<float>(text, "vorticity");
+  const auto divergence = read_array<float>(text, "divergence"), pressure = read_array<float>(text, "pressure");
+  ASSERT_EQ(velocity.size(), 3 * g.cell_count());
+  ASSERT_EQ(vorticity.size(), 3 * g.cell_count());
+  std::size_t n = 0;
+  fluid3d::for_each_interior_cell(g, [&](std::size_t, int i, int j, int k) {
+    const fluid3d::Vec3 p = g.position(3, i, j, k);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(velocity[3 * n + c], field(c, p), 1e-7) << n;
+    EXPECT_NEAR(vorticity[3 * n], 0.0, 1e-6);
+    EXPECT_NEAR(vorticity[3 * n + 1], 0.0, 1e-6);
+    EXPECT_NEAR(vorticity[3 * n + 2], 2.0 * omega, 1e-6);
+    EXPECT_NEAR(divergence[n], 0.0, 1e-6);
+    EXPECT_EQ(pressure[n], static_cast<float>(10.0 * i));
+    ++n;
+  });
 }
 
 TEST(VtkOutput, PointsGetTheirIndexAsId) {

@@ -121,5 +121,37 @@ TEST(AnimationExports, TheExportedCameraIsTheRenderersAtEveryFrame) {
   std::filesystem::remove_all(dir.parent_path());
 }
 
+// render.vertex_velocities: on (the default) the jellyfish's primitives carry _VELOCITY and the
+// .usda its `velocities`; off, neither, and the .glb is smaller by the velocities' bytes.
+TEST(AnimationExports, VertexVelocitiesAreWrittenOnlyWhenAskedFor) {
+  std::vector<jellyfish::SliceFrame> frames;
+  for (int k = 0; k < 4; ++k) {
+    geometry::SyntheticBell spec;
+    spec.contraction = 0.25 * k;
+    spec.time_s = k / 30.0;
+    frames.push_back(geometry::synthetic_bell(spec));
+  }
+  std::array<std::size_t, 2> glb_size{};
+  for (const bool velocities : {true, false}) {
+    PipelineSettings s;
+    s.geometry.latitude_samples = 21;
+    s.geometry.disc_points = 16;
+    s.png_frames = s.video = s.obj = s.ply = s.viewer = s.pc2 = false;
+    s.usda = true;
+    s.vertex_velocities = velocities;
+    const std::filesystem::path dir = testing::scratch(velocities ? "with_velocities" : "without_velocities");
+    write_animation_outputs(frames, s, io::OutputDir(dir));
+    const std::string bytes = slurp(dir / "jellyfish.glb");
+    glb_size[velocities ? 0 : 1] = bytes.size();
+    const io::GlbContents glb = io::parse_glb(bytes);
+    const nlohmann::json& primitive = glb.json["meshes"][0]["primitives"][0];
+    EXPECT_EQ(primitive["attributes"].contains("_VELOCITY"), velocities);
+    EXPECT_EQ(primitive["targets"][1].contains("_VELOCITY"), velocities);
+    EXPECT_EQ(slurp(dir / "jellyfish.usda").find("vector3f[] velocities") != std::string::npos, velocities);
+    std::filesystem::remove_all(dir.parent_path());
+  }
+  EXPECT_LT(glb_size[1], glb_size[0]);
+}
+
 }  // namespace
 }  // namespace jellysim::render

@@ -74,9 +74,15 @@ struct GlbBody {
 /// velocity; metres per second = value × the mesh's extras.velocity_scale_m_per_s.
 /// `camera`, when it has frames: a node "camera" (perspective: yfov, aspectRatio, znear, zfar),
 /// its translation and rotation animated in "swim" unless it stands still.
+/// `closes_loop` (a seamless loop, render.loop): the last time is the loop's closing key, one frame
+/// after its last frame: every body's positions there are frame 0's (relative to its root; else
+/// InputError), the roots and camera may have moved on (a constant root motion). It gets no morph
+/// target (its weights are all 0, the base), so a player that loops the clip over its duration
+/// wraps without a jump; asset.extras say `loop: true` and `frame_count` leaves it out (the frames
+/// to play, for frame-based tools).
 std::string glb_bytes(const std::vector<GlbBody>& bodies, const std::vector<double>& times_s,
                       const std::vector<GlbMaterial>& materials, int every = 1, double frames_per_second = 0.0,
-                      const ExportCamera& camera = {});
+                      const ExportCamera& camera = {}, bool closes_loop = false);
 
 /// One body named "jellyfish" that stays at the origin, every frame a morph target.
 std::string glb_bytes(const geometry::Animation& animation, const std::vector<GlbMaterial>& materials);

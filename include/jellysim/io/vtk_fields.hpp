@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "jellysim/fluid/grid.hpp"
+#include "jellysim/fluid3d/grid_3d.hpp"
 
 namespace jellysim::io {
 
@@ -40,6 +41,13 @@ struct VtkPolyData {
 /// at the cell centres of `state` as VTK XML ImageData. The velocity ghosts must be filled.
 void write_flow_vti(std::ostream& out, const fluid::FlowState& state);
 void write_flow_vti(const std::filesystem::path& path, const fluid::FlowState& state);
+
+/// The 3D flow (issue 40, docs/three-d.md) as VTK XML ImageData for ParaView: velocity (vector,
+/// m/s, the two faces of each cell averaged), speed (m/s), vorticity (vector, 1/s: central
+/// differences of the centre velocities, one-sided in the first and last cells), pressure (Pa) and
+/// divergence (1/s, the MAC divergence) at the cell centres, Float32.
+void write_flow_vti(std::ostream& out, const fluid3d::FlowState3d& state);
+void write_flow_vti(const std::filesystem::path& path, const fluid3d::FlowState3d& state);
 
 /// Writes the points, their cells and their data as VTK XML PolyData; throws std::invalid_argument
 /// when an array's size does not match its points or cells.

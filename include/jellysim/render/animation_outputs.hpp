@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,6 +63,14 @@ struct PipelineSettings {
   /// frames/frame_NNNN.exr: beauty (RGBA, linear half), depth (Z, m) and screen-space velocity
   /// (velocity.X, velocity.Y: pixels per frame) passes (render/exr_frames.hpp).
   bool exr = false;
+  /// A seamless loop (render.loop, experiments/animation.cpp): the frames are the loop's, and the
+  /// .glb gets its closing key, frame 0 again one frame after the last, the jellyfish's roots (and a
+  /// follow camera) moved on by this travel (m; zero when the root motion is removed), so that a
+  /// player looping the clip wraps without a jump (io::glb_bytes's closes_loop). Unset: no loop.
+  std::optional<geometry::Vec3> loop_travel_m;
+  /// The jellyfish's per-vertex velocities (m/s) in the .glb (_VELOCITY) and .usda (`velocities`),
+  /// for motion blur; off, the .glb is about a quarter smaller (docs/rendering.md).
+  bool vertex_velocities = true;
   /// viewer.html: embed the .glb as base64 (jellyfish.glb.js, opens from file://) instead of
   /// loading jellyfish.glb beside it (needs a web server: browsers refuse file:// fetches).
   bool page_embed = false;
