@@ -141,10 +141,12 @@ TEST(Swim, MobilityPreconditionerGivesTheSameStepsAsPlainGmres) {
 
 // The built-in scene as `jellysim simulate` runs it: five contraction cycles at 64 cells across the
 // bell (a centred bell in a symmetric tank: the mirror symmetry is kept, on half the tank). The bell
-// stays structurally sound, swims forward by more than 0.6 bell heights in every cycle (measured
-// 20.3, 29.8, 39.7, 46.7, 51.1 mm: 0.73–1.8 heights, docs/convergence.md), with no lateral drift
-// beyond round-off (measured 2.8e-17 m over 19 cm; allowed 3e-16 m), one Krylov iteration per
-// step, and its volume oscillates at the contraction frequency. Release only (about 40 s).
+// stays structurally sound, swims forward by more than 0.55 bell heights in every cycle (measured
+// 16.5, 28.6, 39.0, 45.7 mm in cycles 1–4: 0.59–1.6 heights,
+// docs/convergence.md; 20.3 mm in the first before the tentacles' roots held against the aperture
+// chord, docs/jellyfish.md "Tentacles that trail"), with no lateral drift beyond round-off
+// (measured 4.2e-17 m over 18 cm; allowed 3e-16 m), one Krylov iteration per step, and its volume
+// oscillates at the contraction frequency. Release only (about 40 s).
 TEST(SlowSwim, BuiltInSceneIsResolvedAndSwimsForwardInEveryCycle) {
   const jellyfish::SwimSettings s = builtin_scene();
   ASSERT_NEAR(s.duration_s * s.jellyfish().frequency_hz, 5.0, 1e-9);
@@ -159,7 +161,7 @@ TEST(SlowSwim, BuiltInSceneIsResolvedAndSwimsForwardInEveryCycle) {
   double previous = 0.0;
   for (std::size_t c = 0; c < at.size(); ++c) {
     std::printf("cycle %zu: %.4g m\n", c + 1, at[c] - previous);
-    EXPECT_GT(at[c] - previous, 0.6 * s.jellyfish().height_m) << "cycle " << c + 1;
+    EXPECT_GT(at[c] - previous, 0.55 * s.jellyfish().height_m) << "cycle " << c + 1;
     previous = at[c];
   }
   const auto& last = rec.metrics.back();
