@@ -86,11 +86,12 @@ TEST(Swim, NonFiniteStatesAndMetricsAreDivergences) {
 }
 
 // The half tank (east half, a symmetry plane on the axis) against the whole tank, both keeping the
-// mirror symmetry, over one cycle (the bell moves 1.6-1.7 cm on the preview grid), for both fluid
-// solvers and an exact and an iterative pressure solver: the same steps and the same umbrella at
-// every frame, to round-off with the exact solvers (measured 1.09e-15 m Eulerian, 9.6e-15 m
-// semi-Lagrangian; allowed 1e-14 and 2e-14 m) and to the multigrid tolerance (1e-8 of each pressure
-// solve: measured 1.61e-9 m; allowed 2e-9 m).
+// mirror symmetry, over one cycle (the bell moves 0.9-1.1 cm on the preview grid; 1.6-1.7 cm with
+// the tentacles' roots along the margin), for both fluid solvers and an exact and an iterative
+// pressure solver: the same steps and the same umbrella at every frame, to round-off with the exact
+// solvers (measured 3.86e-15 m Eulerian, 2.89e-15 m semi-Lagrangian; 1.09e-15 and 9.6e-15 m before;
+// allowed 1e-14 and 2e-14 m) and to the multigrid tolerance (1e-8 of each pressure solve: measured
+// 2.73e-10 m, 1.61e-9 m before; allowed 2e-9 m).
 TEST(Swim, HalfTankMatchesTheWholeTank) {
   struct Case {
     const char* solver;
@@ -119,8 +120,8 @@ TEST(Swim, HalfTankMatchesTheWholeTank) {
 }
 
 // The marker-space solve changes how GMRES gets there, not where: with the mobility preconditioner
-// (one iteration per step) and with plain GMRES (93 per step on the preview grid) the end-of-step
-// states agree within the Krylov tolerance (1e-6 of each step's correction: measured 4.4e-10 m over
+// (one iteration per step) and with plain GMRES (91 per step on the preview grid) the end-of-step
+// states agree within the Krylov tolerance (1e-6 of each step's correction: measured 4.67e-10 m over
 // 14 steps, while the bell's margin moves about 1 mm).
 TEST(Swim, MobilityPreconditionerGivesTheSameStepsAsPlainGmres) {
   jellyfish::SwimSettings s = preview_scene();
@@ -178,10 +179,11 @@ TEST(SlowSwim, BuiltInSceneIsResolvedAndSwimsForwardInEveryCycle) {
 // A symmetric bell in a symmetric tank stays mirror-symmetric by itself, on the whole tank without
 // the symmetry kept (tank.symmetry = "none"): the exact marker-space solve leaves round-off as the
 // only seed of asymmetry, and over two cycles on the preview grid the measured point mismatch is
-// 6.83e-14 m and the centroid's lateral offset 1.48e-14 m (on the thesis's coarse tank with plain
-// GMRES at a 1e-6 tolerance they were 5e-7 and 3e-8 m). We allow
-// 7e-13 and 1.5e-13 m. Keeping the mirror-symmetric part on half the tank ("auto") must then change
-// nothing but that round-off: the two runs' umbrellas agree to 3.61e-14 m; we allow 4e-13 m.
+// 1.2e-14 m and the centroid's lateral offset 2.7e-15 m (6.83e-14 and 1.48e-14 m with the tentacles'
+// roots along the margin; on the thesis's coarse tank with plain GMRES at a 1e-6 tolerance they were
+// 5e-7 and 3e-8 m). We allow 7e-13 and 1.5e-13 m. Keeping the mirror-symmetric part on half the tank
+// ("auto") must then change nothing but that round-off: the two runs' umbrellas agree to 1.14e-14 m
+// (3.61e-14 m before); we allow 4e-13 m.
 TEST(Swim, SymmetricBellStaysSymmetricForTwoCycles) {
   jellyfish::SwimSettings s = preview_scene();
   s.duration_s = 2.0 / s.jellyfish().frequency_hz;
