@@ -12,7 +12,7 @@ int main() {
   jellyfish::SwimSettings settings;  // the built-in scene's tank (24 x 48 cm), fluid, coupling, limits
   settings.tank.tracers_per_side = 0;
   settings.tank.cells_x = 96;   // a preview grid, 16 cells across the bell, 60 times cheaper than the
-  settings.tank.cells_y = 192;  // built-in 384 x 768 (on which the first cycle swims 2.03 cm)
+  settings.tank.cells_y = 192;  // built-in 384 x 768 (on which the first cycle swims 1.65 cm)
   jellyfish::JellyfishSpec bell;  // Figure 8.21's bell at the built-in position
   bell.max_spacing_m = 0.5 * settings.tank.width_m / settings.tank.cells_x;  // markers half a cell apart
   bell.frequency_hz = 0.7;

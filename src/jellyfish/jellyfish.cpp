@@ -206,6 +206,16 @@ class SpringConstants {
     const double compliance = 0.5 * l_bell / s_.material.bending_n_m + 0.5 * l_tentacle / s_.material.tentacle_bending_n_m;
     return s_.material.bending_n_m > 0 && s_.material.tentacle_bending_n_m > 0 ? 1.0 / compliance : 0.0;
   }
+  /// True when the root joint holds the tentacle against the aperture chord (TentacleRoot::axis).
+  bool root_on_axis() const {
+    return s_.tentacle_root == TentacleRoot::axis || (s_.tentacle_root == TentacleRoot::automatic && continuum());
+  }
+  /// The root joint against the aperture chord: only the tentacle's first half cell bends between
+  /// the chord and the strand, κ_θ = B_t / (½ l_tentacle) (thesis: its tentacle joint).
+  double axis_root_joint(double l_tentacle, double tentacle_spacing) const {
+    if (!continuum()) return tentacle_joint(l_tentacle, l_tentacle, tentacle_spacing);
+    return s_.material.tentacle_bending_n_m / (0.5 * l_tentacle);
+  }
   /// A muscle of uncontracted length L standing for a band of bell `band` high, `gap` from its
   /// neighbouring muscles: κ = k_m band / L (its tension per unit strain is k_m band), or §7.1's
   /// λ_m gap² / L.
@@ -351,7 +361,8 @@ void Jellyfish::build_muscles(const std::vector<Vec2>& profile, double spacing) 
 
 void Jellyfish::build_tentacles(int tentacle_points) {
   // Two strands hang from the aperture tips, away from the apex; a joint at each tip holds the
-  // strand's angle to the bell's last segment.
+  // strand's angle to the aperture chord (the line to the other tip; TentacleRoot::axis) or to the
+  // bell's last segment (TentacleRoot::margin, §7.1).
   if (tentacle_points <= 0) return;
   const SpringConstants k(spec_);
   const auto& u = layout_.umbrella;
@@ -372,7 +383,11 @@ void Jellyfish::build_tentacles(int tentacle_points) {
     auto joint = [&](int a, int b, int c, double kappa) {
       if (kappa > 0) own_body_.add_angular_spring(a, b, c, kappa, kNaN);
     };
-    joint(inner, tip, strand[1], k.root_joint(distance(inner, tip), distance(tip, strand[1]), t_spacing));
+    const int opposite = side == 0 ? u.back() : u.front();
+    if (k.root_on_axis())
+      joint(opposite, tip, strand[1], k.axis_root_joint(distance(tip, strand[1]), t_spacing));
+    else
+      joint(inner, tip, strand[1], k.root_joint(distance(inner, tip), distance(tip, strand[1]), t_spacing));
     for (std::size_t j = 1; j + 1 < strand.size(); ++j)
       joint(strand[j - 1], strand[j], strand[j + 1],
             k.tentacle_joint(distance(strand[j - 1], strand[j]), distance(strand[j], strand[j + 1]), t_spacing));

@@ -137,6 +137,11 @@ std::vector<Parameter> jellyfish_body_parameters() {
              "continuum: a tentacle's tension per unit strain per metre of depth"),
       number("jellyfish.tentacle_bending_rigidity", "1.09e-5", "N·m", kMaterialOrZero,
              "continuum: a tentacle's bending moment per unit curvature per metre of depth"),
+      choice("jellyfish.tentacle_root", "auto", {"auto", "axis", "margin"},
+             "what a tentacle's root joint holds it against: axis: the aperture chord, so the tentacle hangs along "
+             "the swimming axis however the margin tilts; margin: the bell's last segment, so it continues the "
+             "margin's tangent and swings under the bell in the recovery stroke (§7.1); auto: axis for the "
+             "continuum model, margin for the thesis's (docs/jellyfish.md, \"Tentacles that trail\")"),
       number("jellyfish.line_density", "0.8166", "kg/m²", kMaterial,
              "continuum: the bell's mass per metre of arc and of depth (the fluid-free model; coupled markers are massless)"),
       number("jellyfish.tentacle_line_density", "2.571", "kg/m²", kMaterial,
@@ -306,6 +311,10 @@ jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling:
   j.elastic_model = r.choice("jellyfish.elastic_model") == "thesis" ? jellyfish::ElasticModel::thesis
                                                                     : jellyfish::ElasticModel::continuum;
   refuse_other_models_fields(r, j.elastic_model);
+  const std::string root = r.choice("jellyfish.tentacle_root");
+  j.tentacle_root = root == "axis"     ? jellyfish::TentacleRoot::axis
+                    : root == "margin" ? jellyfish::TentacleRoot::margin
+                                       : jellyfish::TentacleRoot::automatic;
   read_elastic_constants(r, j);
   j.frequency_hz = r.number("jellyfish.frequency");
   j.gamma = r.number("jellyfish.gamma");

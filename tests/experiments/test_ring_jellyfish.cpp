@@ -187,8 +187,8 @@ TEST(RingJellyfish, TheBellsForcesAreInternal) {
 }
 
 // One cycle of the built-in bell in axisymmetric water on the preview grid: the symmetric stroke
-// moves it along the axis, farther than the planar slice (measured 3.46 cm against 1.63 cm), at one
-// Krylov iteration per step.
+// moves it along the axis, farther than the planar slice (measured 3.31 cm against 0.93 cm; 3.46
+// and 1.63 cm with the tentacles' roots along the margin), at one Krylov iteration per step.
 TEST(RingJellyfish, SwimsAlongTheAxisFartherThanThePlanarSlice) {
   jellyfish::SwimSettings s = experiments::read_swim_settings(axisymmetric_scene());
   s.duration_s = 1.0 / s.jellyfish().frequency_hz;
@@ -232,9 +232,10 @@ TEST(RingJellyfish, ASphereObstacleFeelsStokesDragFromTheScene) {
 }
 
 // Ten cycles in a tank 64 cm tall (the ring bell swims about a diameter per cycle) on the preview
-// grid: structurally sound, forward in every cycle by more than half a diameter (measured 3.5 to
-// 3.9 cm, 0.87-0.97 diameters; 37.2 cm in all), its cavity volume oscillating at the contraction
-// frequency.
+// grid: structurally sound, forward in every cycle by more than half a diameter (measured 3.3 to
+// 5.3 cm, 0.83-1.34 diameters; 48.8 cm in all; with the tentacles' roots along the margin,
+// jellyfish.tentacle_root = "margin", whose skirt folded across the aperture: 3.5 to 3.9 cm, 37.2 cm
+// in all), its cavity volume oscillating at the contraction frequency.
 TEST(SlowRingJellyfish, SwimsTenCyclesAlongTheAxis) {
   jellyfish::SwimSettings s = experiments::read_swim_settings(
       axisymmetric_scene("duration = 14.285714285714286\n[tank]\nheight = 0.64\ncells = [96, 256]\n"));

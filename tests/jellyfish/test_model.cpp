@@ -108,6 +108,44 @@ TEST(Jellyfish, ContinuumSpringConstantsAreTheMaterialsShare) {
   EXPECT_NEAR(ang.stiffness[0], spec.material.bending_n_m / (0.5 * (l1 + l2)), 1e-15);  // B / l̄
 }
 
+/// The joint at the root of tentacle `strand`: the angular spring whose middle point is its margin
+/// tip and whose last is the strand's first point beyond the tip.
+std::size_t root_joint(const Jellyfish& j, std::size_t strand) {
+  const auto& t = j.layout().tentacles[strand];
+  const auto& ang = j.body().angular;
+  for (std::size_t a = 0; a < ang.size(); ++a)
+    if (ang.j[a] == t[0] && ang.k[a] == t[1]) return a;
+  ADD_FAILURE() << "no root joint";
+  return 0;
+}
+
+// Issue 39 item 5 (docs/jellyfish.md, "Tentacles that trail"): the continuum model holds each
+// tentacle's root against the aperture chord (the other margin tip), stiffness B_t / (½ l_t) of the
+// tentacle's first half cell, so that turning the margin does not turn the tentacle; "margin" and
+// the thesis's model hold it against the bell's last segment (§7.1) with the joints as before.
+TEST(Jellyfish, TentacleRootsHoldAgainstTheApertureChord) {
+  JellyfishSpec spec = small_spec();
+  const Jellyfish axis(spec);
+  const auto& u = axis.layout().umbrella;
+  const auto& ang = axis.body().angular;
+  for (std::size_t strand = 0; strand < 2; ++strand) {
+    const std::size_t a = root_joint(axis, strand);
+    EXPECT_EQ(ang.i[a], strand == 0 ? u.back() : u.front());
+    const auto& t = axis.layout().tentacles[strand];
+    const double l_t = norm(axis.body().points.position[static_cast<std::size_t>(t[1])] -
+                            axis.body().points.position[static_cast<std::size_t>(t[0])]);
+    EXPECT_NEAR(ang.stiffness[a], spec.material.tentacle_bending_n_m / (0.5 * l_t), 1e-15);
+    EXPECT_NEAR(std::abs(ang.rest_angle[a]), 0.5 * kPi, 1e-9);  // hanging along the axis, across the chord
+  }
+  spec.tentacle_root = TentacleRoot::margin;
+  const Jellyfish margin(spec);
+  EXPECT_EQ(margin.body().angular.i[root_joint(margin, 0)], margin.layout().umbrella[1]);
+  spec.tentacle_root = TentacleRoot::automatic;
+  spec.elastic_model = ElasticModel::thesis;
+  const Jellyfish thesis(spec);
+  EXPECT_EQ(thesis.body().angular.i[root_joint(thesis, 1)], thesis.layout().umbrella[thesis.layout().umbrella.size() - 2]);
+}
+
 TEST(Jellyfish, SpringConstantsComeFromEquationSevenOne) {
   JellyfishSpec spec = small_spec();
   spec.elastic_model = ElasticModel::thesis;

@@ -34,6 +34,16 @@ enum class UmbrellaModel { angular, mesh };
 ///    studies use it on the thesis's tank.
 enum class ElasticModel { continuum, thesis };
 
+/// What a tentacle's root joint holds the strand's first segment against (docs/jellyfish.md,
+/// "Tentacles that trail"):
+///  * axis: the aperture chord (the line between the two margins, across the swimming axis), at the
+///    angle the strand has at the start: the tentacle hangs along the swimming axis whatever the
+///    margin's tilt, anchored in the margin's ring;
+///  * margin: the bell's last segment, as §7.1 builds it: the tentacle continues the margin's
+///    tangent, so it swings under the bell whenever the margin turns inward (the recovery stroke);
+///  * automatic: axis for the continuum model, margin for the thesis's (its figures bit for bit).
+enum class TentacleRoot { automatic, axis, margin };
+
 /// The slice's material per metre of slice depth for the continuum model. The defaults are the
 /// thesis construction of the built-in bell (λ = 1.186e6 Pa, ϑ = 1.5 mm, bending factor 10,
 /// muscles 4e5 Pa, tentacles 3 ϑ², one bending factor) evaluated at the built-in marker spacing
@@ -61,6 +71,7 @@ struct JellyfishSpec {
   UmbrellaModel model = UmbrellaModel::angular;
   ElasticModel elastic_model = ElasticModel::continuum;
   ContinuumMaterial material{};           ///< the continuum model's material
+  TentacleRoot tentacle_root = TentacleRoot::automatic;  ///< what the tentacles' root joints hold against
 
   // The thesis model's material (eq. 7.1, κ_l = λ A / l_r; forces per metre of depth).
   double bell_modulus_pa = 1.186e6;       ///< bell mesoglea λ
