@@ -26,7 +26,7 @@ void prepare_loop(const jellyfish::LoopSettings& loop, jellyfish::SwimSettings& 
   const double diameter = settings.jellyfish().diameter_m, frequency = settings.jellyfish().frequency_hz;
   options.stop_when = [=](const jellyfish::SwimRecord& rec) {
     return jellyfish::search_loop(rec.frames, per_cycle, loop, diameter, frequency)
-        .recorded(rec.frames.size(), per_cycle, loop);
+        .recorded(rec.frames.size(), per_cycle);
   };
   pipeline.geometry.noise.time_frequency_hz = 0.0;  // the noise's drift does not repeat: frozen in a loop
 }
@@ -41,8 +41,8 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
   const jellyfish::JellyfishSpec& j = settings.jellyfish();
   const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, j.frequency_hz);
   const jellyfish::LoopSearch search = jellyfish::search_loop(rec.frames, per_cycle, loop, j.diameter_m, j.frequency_hz);
-  if (search.start_cycle() == 0) throw RunError("render.loop: the run recorded no cycle start to compare");
-  const jellyfish::StrokeMismatch& start = search.checked.at(static_cast<std::size_t>(search.start_cycle() - 2));
+  if (!search.loop_check()) throw RunError("render.loop: the run recorded no cycle start to compare");
+  const jellyfish::StrokeMismatch& start = *search.loop_check();
   const auto first = static_cast<std::size_t>(search.start_cycle() * per_cycle);
   const auto count = static_cast<std::size_t>(loop.cycles * per_cycle);
   jellyfish::LoopClip clip = jellyfish::cut_loop(rec.frames, first, count, settings.frames_per_second,

@@ -20,12 +20,16 @@ SwimSettings loop_search_settings(SwimSettings settings, const LoopSettings& loo
                      "one has " + std::to_string(settings.school.size()) + " jellyfish, " +
                      std::to_string(settings.obstacles.size()) + " obstacles and " +
                      std::to_string(settings.structures.size()) + " IB2d structures)");
+  if (loop.cycles >= loop.max_cycles)
+    throw InputError("field 'render.loop_cycles' = " + std::to_string(loop.cycles) +
+                     " must be below render.loop_max_cycles = " + std::to_string(loop.max_cycles) +
+                     " (the loop starts at cycle 1 at the earliest and closes by render.loop_max_cycles)");
   const double f = settings.jellyfish().frequency_hz;
   const double asked = settings.frames_per_second > 0.0 ? settings.frames_per_second : 1.0 / settings.frame_interval_s;
   const int per_cycle = frames_per_cycle(asked, f);
   settings.frames_per_second = per_cycle * f;
   settings.frame_interval_s = 1.0 / settings.frames_per_second;
-  const auto last_frame = static_cast<double>((loop.max_cycles + loop.cycles) * per_cycle + 1);
+  const auto last_frame = static_cast<double>(loop.max_cycles * per_cycle + 1);
   settings.duration_s = last_frame / settings.frames_per_second;
   return settings;
 }
@@ -62,25 +66,32 @@ StrokeMismatch stroke_mismatch(const std::vector<SliceFrame>& frames, std::size_
   return m;
 }
 
-int LoopSearch::start_cycle() const {
-  if (periodic_cycle > 0 || checked.empty()) return periodic_cycle;
-  return std::min_element(checked.begin(), checked.end(), [](const StrokeMismatch& x, const StrokeMismatch& y) {
-           return x.largest() < y.largest();
-         })->cycle;
+const StrokeMismatch* LoopSearch::loop_check() const {
+  if (checked.empty()) return nullptr;
+  if (periodic_cycle > 0) return &checked.back();
+  return &*std::min_element(checked.begin(), checked.end(),
+                            [](const StrokeMismatch& x, const StrokeMismatch& y) { return x.largest() < y.largest(); });
 }
 
-bool LoopSearch::recorded(std::size_t frames, int frames_per_cycle, const LoopSettings& loop) const {
+int LoopSearch::start_cycle() const {
+  const StrokeMismatch* check = loop_check();
+  return check ? check->cycle - cycles : 0;
+}
+
+bool LoopSearch::recorded(std::size_t frames, int frames_per_cycle) const {
   if (periodic_cycle == 0) return false;
-  const auto closing = static_cast<std::size_t>((periodic_cycle + loop.cycles) * frames_per_cycle);
-  return frames >= closing + 2;
+  return frames >= static_cast<std::size_t>(periodic_cycle * frames_per_cycle) + 2;
 }
 
 LoopSearch search_loop(const std::vector<SliceFrame>& frames, int frames_per_cycle, const LoopSettings& loop,
                        double diameter_m, double frequency_hz) {
   LoopSearch s;
+  s.cycles = loop.cycles;
   const auto per_cycle = static_cast<std::size_t>(frames_per_cycle);
-  for (int c = 2; c <= loop.max_cycles && static_cast<std::size_t>(c) * per_cycle + 1 < frames.size(); ++c) {
-    StrokeMismatch m = stroke_mismatch(frames, (c - 1) * per_cycle, c * per_cycle, diameter_m, frequency_hz);
+  for (int c = loop.cycles + 1; c <= loop.max_cycles && static_cast<std::size_t>(c) * per_cycle + 1 < frames.size();
+       ++c) {
+    StrokeMismatch m = stroke_mismatch(frames, static_cast<std::size_t>(c - loop.cycles) * per_cycle,
+                                       static_cast<std::size_t>(c) * per_cycle, diameter_m, frequency_hz);
     m.cycle = c;
     s.checked.push_back(m);
     if (m.largest() <= loop.tolerance) {

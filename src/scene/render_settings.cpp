@@ -124,13 +124,14 @@ std::vector<Parameter> noise_section_parameters() {
 std::vector<Parameter> loop_parameters() {
   return {
       boolean("render.loop", "false",
-              "a seamless loop: simulate until the stroke is periodic, then animate render.loop_cycles whole cycles "
-              "from there (the frame rate rounded to whole frames per cycle; `jellysim run --loop CYCLES`)"),
-      integer("render.loop_cycles", "1", 1, 100, "contraction cycles in the loop"),
+              "a seamless loop: simulate until render.loop_cycles whole cycles close on themselves, then animate them "
+              "(the frame rate rounded to whole frames per cycle; `jellysim run --loop CYCLES`)"),
+      integer("render.loop_cycles", "1", 1, 100, "contraction cycles in the loop (below render.loop_max_cycles)"),
       number("render.loop_tolerance", "0.05", "", Range{0.0, 1.0, true, false},
-             "periodic when a cycle's start matches the previous one's: umbrella shape about its centroid (RMS, of the "
-             "diameter) and centroid speed (of diameter × frequency)"),
-      integer("render.loop_max_cycles", "10", 2, 1000, "the last cycle whose start may pass the check; none by then: the loop cut at the best match, exit 1"),
+             "the loop closes when the start of the cycle after it matches its first frame: umbrella shape about its "
+             "centroid (RMS, of the diameter) and centroid speed (of diameter × frequency)"),
+      integer("render.loop_max_cycles", "10", 2, 1000,
+              "the last cycle whose start may close the loop; none by then: the loop cut at the best match, exit 1"),
       choice("render.loop_root_motion", "remove", {"remove", "constant"},
              "remove: the travel over the loop taken out linearly (the bell swims in place); constant: kept (frame N "
              "is frame 0 moved by summary.json's loop.travel)"),

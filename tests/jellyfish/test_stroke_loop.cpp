@@ -54,9 +54,9 @@ struct Stroke {
     m.speed = std::abs(transient_velocity(t1) - transient_velocity(t0)) / (diameter * frequency);
     return m;
   }
-  /// Cycle c's start against cycle c − 1's.
-  StrokeMismatch expected(int c) const {
-    StrokeMismatch m = expected_between((c - 1) / frequency, c / frequency);
+  /// Cycle c's start against cycle (c − cycles)'s.
+  StrokeMismatch expected(int c, int cycles = 1) const {
+    StrokeMismatch m = expected_between((c - cycles) / frequency, c / frequency);
     m.cycle = c;
     return m;
   }
@@ -77,7 +77,9 @@ TEST(StrokeLoop, MismatchAtCycleStartsIsTheTransientsChange) {
   }
 }
 
-TEST(StrokeLoop, SearchStopsAtTheFirstCycleWithinTheToleranceAndRecordsTheLoop) {
+// The check is the loop's own closure: a loop of two cycles closes at cycle c when c's start
+// matches the start of c − 2; the loop is then cycles c − 2 and c − 1.
+TEST(StrokeLoop, SearchStopsAtTheFirstClosingCycleWithinTheToleranceAndRecordsTheLoop) {
   const Stroke s;
   const int per_cycle = frames_per_cycle(s.rate, s.frequency);
   LoopSettings loop;
@@ -86,25 +88,28 @@ TEST(StrokeLoop, SearchStopsAtTheFirstCycleWithinTheToleranceAndRecordsTheLoop) 
   loop.tolerance = 0.02;
   loop.max_cycles = 10;
   int first_pass = 0;
-  for (int c = 2; c <= loop.max_cycles && first_pass == 0; ++c)
-    if (s.expected(c).largest() <= loop.tolerance) first_pass = c;
-  ASSERT_GT(first_pass, 2);  // the transients make the early cycles fail
-  const std::vector<SliceFrame> frames = s.frames((loop.max_cycles + loop.cycles) * per_cycle + 2);
+  for (int c = 3; c <= loop.max_cycles && first_pass == 0; ++c)
+    if (s.expected(c, 2).largest() <= loop.tolerance) first_pass = c;
+  ASSERT_GT(first_pass, 3);  // the transients make the early cycles fail
+  const std::vector<SliceFrame> frames = s.frames(loop.max_cycles * per_cycle + 2);
   const LoopSearch search = search_loop(frames, per_cycle, loop, s.diameter, s.frequency);
   EXPECT_EQ(search.periodic_cycle, first_pass);
-  EXPECT_EQ(search.start_cycle(), first_pass);
-  ASSERT_EQ(search.checked.size(), static_cast<std::size_t>(first_pass - 1));
+  EXPECT_EQ(search.start_cycle(), first_pass - 2);
+  ASSERT_EQ(search.checked.size(), static_cast<std::size_t>(first_pass - 2));  // cycles 3 … first_pass
+  EXPECT_EQ(search.checked.front().cycle, 3);
   EXPECT_GT(search.checked.front().largest(), loop.tolerance);
+  const StrokeMismatch e = s.expected(first_pass, 2);
+  EXPECT_NEAR(search.loop_check()->speed, e.speed, 1e-11 + 1e-8 * e.speed);
   // Recorded once the frame after the closing frame (for its speed) is there.
-  const auto needed = static_cast<std::size_t>((first_pass + loop.cycles) * per_cycle + 2);
-  EXPECT_FALSE(search.recorded(needed - 1, per_cycle, loop));
-  EXPECT_TRUE(search.recorded(needed, per_cycle, loop));
+  const auto needed = static_cast<std::size_t>(first_pass * per_cycle + 2);
+  EXPECT_FALSE(search.recorded(needed - 1, per_cycle));
+  EXPECT_TRUE(search.recorded(needed, per_cycle));
   // Without a pass the loop starts at the best match.
   loop.tolerance = 1e-9;
   const LoopSearch none = search_loop(frames, per_cycle, loop, s.diameter, s.frequency);
   EXPECT_EQ(none.periodic_cycle, 0);
-  EXPECT_EQ(none.start_cycle(), loop.max_cycles);  // the transients decay: the last cycle matches best
-  EXPECT_FALSE(none.recorded(frames.size(), per_cycle, loop));
+  EXPECT_EQ(none.start_cycle(), loop.max_cycles - 2);  // the transients decay: the last cycles match best
+  EXPECT_FALSE(none.recorded(frames.size(), per_cycle));
 }
 
 TEST(StrokeLoop, RemovedRootMotionMakesTheFrameAfterTheLastTheFirst) {
@@ -162,10 +167,18 @@ TEST(StrokeLoop, LoopSearchPutsEveryCycleStartOnAFrameAndRunsToTheCap) {
   EXPECT_EQ(s.frames_per_second, 43 * 0.7);
   EXPECT_EQ(s.frame_interval_s, 1.0 / (43 * 0.7));
   const sim::FrameClock clock = s.frame_clock(s.duration_s);
-  EXPECT_EQ(clock.end_time(), static_cast<double>(12 * 43 + 1) / (43 * 0.7));
-  for (int c = 1; c <= 12; ++c) EXPECT_NEAR(clock.frame_time(43 * c), c / 0.7, 4e-16 * c / 0.7) << c;
+  EXPECT_EQ(clock.end_time(), static_cast<double>(10 * 43 + 1) / (43 * 0.7));  // the last closing frame and one
+  for (int c = 1; c <= 10; ++c) EXPECT_NEAR(clock.frame_time(43 * c), c / 0.7, 4e-16 * c / 0.7) << c;
   settings.frames_per_second = 24.0;  // output.fps: 34 frames a cycle, 23.8 frames a second
   EXPECT_EQ(loop_search_settings(settings, loop).frames_per_second, 34 * 0.7);
+  loop.cycles = 10;  // a loop as long as the cap can never close
+  try {
+    loop_search_settings(settings, loop);
+    FAIL() << "a loop of render.loop_max_cycles accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("render.loop_cycles"), std::string::npos) << e.what();
+  }
+  loop.cycles = 2;
   settings.school.emplace_back();
   try {
     loop_search_settings(settings, loop);

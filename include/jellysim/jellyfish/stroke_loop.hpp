@@ -30,8 +30,9 @@ struct LoopSettings {
 int frames_per_cycle(double rate_hz, double frequency_hz);
 
 /// The swim of a loop search: frames_per_second = frames_per_cycle · frequency (every cycle start a
-/// frame), the duration the cap: (max_cycles + cycles) cycles and one frame. Throws InputError
-/// (naming render.loop) unless the scene holds exactly one jellyfish and nothing else.
+/// frame), the duration the cap: max_cycles cycles and one frame. Throws InputError (naming
+/// render.loop) unless the scene holds exactly one jellyfish and nothing else, and (naming
+/// render.loop_cycles) unless the loop is shorter than render.loop_max_cycles.
 SwimSettings loop_search_settings(SwimSettings settings, const LoopSettings& loop);
 
 /// How far two recorded states of the stroke differ.
@@ -46,15 +47,20 @@ struct StrokeMismatch {
 StrokeMismatch stroke_mismatch(const std::vector<SliceFrame>& frames, std::size_t a, std::size_t b,
                                double diameter_m, double frequency_hz);
 
-/// Where a loop search stands: the cycles checked so far (2, 3, …: cycle c's start against cycle
-/// c − 1's; the first cycle starts from rest and passes falsely) and the first that passed.
+/// Where a loop search stands. The check is the loop's own closure: cycle c's start against the
+/// start of cycle c − cycles, the loop's first, for c = cycles + 1, cycles + 2, … (the loop never
+/// starts at cycle 0, which starts from rest and whose start passes falsely); the first c within the
+/// tolerance closes the loop, which is cycles c − cycles … c − 1.
 struct LoopSearch {
-  std::vector<StrokeMismatch> checked;
-  int periodic_cycle = 0;  ///< the first cycle whose start matched within the tolerance; 0: none yet
-  /// The cycle the loop starts at: periodic_cycle, or without one the best match checked (0: none).
+  std::vector<StrokeMismatch> checked;  ///< each with `cycle` c, the closing cycle
+  int periodic_cycle = 0;  ///< the first closing cycle within the tolerance; 0: none yet
+  int cycles = 1;          ///< the loop's cycles
+  /// The check the loop is cut by: the one that passed, or without one the best (nullptr: none).
+  const StrokeMismatch* loop_check() const;
+  /// The cycle the loop starts at: loop_check()'s c − cycles (0: nothing checked).
   int start_cycle() const;
-  /// Whether `frames` hold the loop from start_cycle() and the frame after its closing frame.
-  bool recorded(std::size_t frames, int frames_per_cycle, const LoopSettings& loop) const;
+  /// Whether `frames` hold the loop up to its closing frame and the frame after it.
+  bool recorded(std::size_t frames, int frames_per_cycle) const;
 };
 LoopSearch search_loop(const std::vector<SliceFrame>& frames, int frames_per_cycle, const LoopSettings& loop,
                        double diameter_m, double frequency_hz);
