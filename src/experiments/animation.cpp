@@ -33,7 +33,7 @@ void prepare_loop(const jellyfish::LoopSettings& loop, jellyfish::SwimSettings& 
 
 /// The loop cut from the run (its frames, the marine snow frozen at its first frame) into `frames`
 /// and `tracers`, loop_slices.csv (the closing frame last) and summary.json's "loop"; returns a
-/// failure when the stroke did not repeat within the tolerance (the loop is then cut at the best match).
+/// failure when no loop closed within the tolerance (the loop is then cut at the best match).
 std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyfish::SwimSettings& settings,
                                const SwimRecording& rec, const io::OutputDir& out, nlohmann::ordered_json& figures,
                                std::vector<jellyfish::SliceFrame>& frames, std::vector<std::vector<Vec2>>& tracers,
@@ -66,10 +66,10 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
   frames = std::move(clip.frames);
   if (!tracers.empty()) tracers.assign(count, rec.tracers.at(first));
   if (search.periodic_cycle > 0) return {};
-  return "render.loop: the stroke did not repeat within render.loop_tolerance = " +
+  return "render.loop: no loop closed within render.loop_tolerance = " +
          config::format_number(loop.tolerance) + " by render.loop_max_cycles = " + std::to_string(loop.max_cycles) +
-         " (the best match, cycle " + std::to_string(start.cycle) + ": shape " + config::format_number(start.shape) +
-         ", speed " + config::format_number(start.speed) + "); the loop was cut there";
+         " (the best match: the loop closing at cycle " + std::to_string(start.cycle) + ", shape " +
+         config::format_number(start.shape) + ", speed " + config::format_number(start.speed) + "); the loop was cut there";
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
