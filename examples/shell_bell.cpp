@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
@@ -21,6 +22,10 @@ namespace {
 
 void write_obj(const std::string& path, const js::ShellBell& bell, const js::Vector& x) {
   std::ofstream out(path);
+  if (!out) {
+    std::fprintf(stderr, "shell_bell: cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
   for (Eigen::Index i = 0; i < x.size() / 3; ++i) out << "v " << x(3 * i) << ' ' << x(3 * i + 1) << ' ' << x(3 * i + 2) << '\n';
   for (const auto& t : bell.surface().mesh.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
   for (const auto& strand : bell.tentacles()) {
@@ -28,21 +33,6 @@ void write_obj(const std::string& path, const js::ShellBell& bell, const js::Vec
     for (int p : strand) out << ' ' << p + 1;
     out << '\n';
   }
-}
-
-/// Mean radial displacement (m) of the margin's vertices nearest to azimuth φ (within 30°).
-double margin_displacement(const js::ShellBell& bell, const js::Vector& x, double phi) {
-  const auto& r = bell.surface().rings;
-  const std::size_t m = r.first.size() - 1;
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < r.count[m]; ++i) {
-    const double azimuth = 2.0 * std::numbers::pi * (i + r.offset[m]) / r.count[m];
-    if (std::abs(std::remainder(azimuth - phi, 2.0 * std::numbers::pi)) > std::numbers::pi / 6 + 1e-9) continue;
-    sum += js::axial_radius(x, r.first[m] + i) - r.radius_m[m];
-    ++count;
-  }
-  return sum / count;
 }
 
 }  // namespace
@@ -53,6 +43,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string dir = argv[1];
+  std::error_code made;
+  std::filesystem::create_directories(dir, made);  // a failure shows when the first file is written
   std::vector<double> times;
   for (int a = 2; a < argc; ++a) times.push_back(std::atof(argv[a]));
   if (times.empty()) times = {0.1, 0.3};
@@ -81,7 +73,7 @@ int main(int argc, char** argv) {
     std::snprintf(name, sizeof name, "/bell_%.3f.obj", until);
     write_obj(dir + name, bell, x);
     std::printf("t = %.3f s: margin displacement near the pacemaker %.3f mm, far side %.3f mm; cavity volume %.4f of rest\n",
-                until, 1e3 * margin_displacement(bell, x, 0.0), 1e3 * margin_displacement(bell, x, std::numbers::pi),
+                until, 1e3 * js::margin_displacement(bell, x, 0.0), 1e3 * js::margin_displacement(bell, x, std::numbers::pi),
                 bell.cavity_volume(x) / v0);
   }
   return 0;

@@ -104,4 +104,20 @@ double ShellBell::cavity_volume(const Vector& x) const {
   return enclosed_volume(unstack(x.head(3 * static_cast<Eigen::Index>(surface_.mesh.vertices.size()))), surface_.mesh);
 }
 
+double margin_displacement(const ShellBell& bell, const Vector& x, double azimuth_rad, double half_width_rad) {
+  const Rings& r = bell.surface().rings;
+  const std::size_t margin = r.first.size() - 1;
+  const double turn = 2.0 * std::numbers::pi;
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < r.count[margin]; ++i) {
+    const double azimuth = turn * (i + r.offset[margin]) / r.count[margin];
+    if (std::abs(std::remainder(azimuth - azimuth_rad, turn)) > half_width_rad + 1e-9) continue;
+    sum += axial_radius(x, r.first[margin] + i) - r.radius_m[margin];
+    ++count;
+  }
+  if (count == 0) throw std::invalid_argument("margin_displacement: no margin vertex within the half width");
+  return sum / count;
+}
+
 }  // namespace jellysim::shell

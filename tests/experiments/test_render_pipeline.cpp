@@ -109,13 +109,7 @@ TEST(Pipeline, TransparentFramesAreRgbaAndExrFramesHoldThePasses) {
   s.style.background = Background::transparent;
   s.exr = true;
   s.camera_distance_m = 0.12;
-  std::vector<jellyfish::SliceFrame> frames;
-  for (int k = 0; k < 2; ++k) {
-    geometry::SyntheticBell spec;
-    spec.aperture_centre_m = {0.0, 0.004 * k};  // swims up 4 mm a frame
-    spec.time_s = k / 30.0;
-    frames.push_back(geometry::synthetic_bell(spec));
-  }
+  const std::vector<jellyfish::SliceFrame> frames = testing::synthetic_stroke(2, 0.0, {0.0, 0.004});  // up 4 mm a frame
   const fs::path dir = scratch("rgba_exr");
   write_animation_outputs(frames, s, io::OutputDir(dir));
   const RgbaImage png = read_png_rgba(dir / "frames/frame_0001.png");
@@ -129,13 +123,7 @@ TEST(Pipeline, WritesEveryPromisedFile) {
   REQUIRE_OFFSCREEN_GL();
   PipelineSettings s = small_settings(96, 72);
   s.video = !find_ffmpeg().empty();
-  std::vector<jellyfish::SliceFrame> frames;
-  for (int k = 0; k < 4; ++k) {
-    geometry::SyntheticBell spec;
-    spec.contraction = 0.25 * k;
-    spec.time_s = k / 30.0;
-    frames.push_back(geometry::synthetic_bell(spec));
-  }
+  const std::vector<jellyfish::SliceFrame> frames = testing::synthetic_stroke(4, 0.25);
   const fs::path dir = scratch("pipeline");
   std::size_t calls = 0;
   const AnimationOutputs out =

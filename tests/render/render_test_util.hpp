@@ -6,7 +6,9 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "jellysim/geometry/synthetic_bell.hpp"
 #include "jellysim/render/gl_renderer.hpp"
 
 namespace jellysim::render::testing {
@@ -23,6 +25,21 @@ inline std::filesystem::path scratch(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+/// `count` synthetic slices at 30 frames/s: frame k contracted by contraction_step · k, its
+/// aperture moved by k · move_per_frame_m (m).
+inline std::vector<jellyfish::SliceFrame> synthetic_stroke(int count, double contraction_step,
+                                                           Vec2 move_per_frame_m = {0.0, 0.0}) {
+  std::vector<jellyfish::SliceFrame> frames;
+  for (int k = 0; k < count; ++k) {
+    geometry::SyntheticBell spec;
+    spec.contraction = contraction_step * k;
+    spec.time_s = k / 30.0;
+    spec.aperture_centre_m = spec.aperture_centre_m + static_cast<double>(k) * move_per_frame_m;
+    frames.push_back(geometry::synthetic_bell(spec));
+  }
+  return frames;
 }
 
 }  // namespace jellysim::render::testing

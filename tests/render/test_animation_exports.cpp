@@ -69,14 +69,8 @@ TEST(AnimationExports, TheExportedCameraIsTheRenderersAtEveryFrame) {
   s.geometry.disc_points = 16;
   s.png_frames = s.video = s.obj = s.ply = s.viewer = s.pc2 = false;
   s.usda = true;
-  std::vector<jellyfish::SliceFrame> frames;
-  for (int k = 0; k < 5; ++k) {  // swimming up and sideways: the follow camera moves
-    geometry::SyntheticBell spec;
-    spec.contraction = 0.2 * k;
-    spec.time_s = k / 30.0;
-    spec.aperture_centre_m = {0.003 * k, 0.01 * k};
-    frames.push_back(geometry::synthetic_bell(spec));
-  }
+  // Swimming up and sideways: the follow camera moves.
+  const std::vector<jellyfish::SliceFrame> frames = testing::synthetic_stroke(5, 0.2, {0.003, 0.01});
   const std::filesystem::path dir = testing::scratch("exported_camera");
   const AnimationOutputs out = write_animation_outputs(frames, s, io::OutputDir(dir));
   ASSERT_EQ(out.cameras.size(), 5u);
@@ -124,13 +118,7 @@ TEST(AnimationExports, TheExportedCameraIsTheRenderersAtEveryFrame) {
 // render.vertex_velocities: on (the default) the jellyfish's primitives carry _VELOCITY and the
 // .usda its `velocities`; off, neither, and the .glb is smaller by the velocities' bytes.
 TEST(AnimationExports, VertexVelocitiesAreWrittenOnlyWhenAskedFor) {
-  std::vector<jellyfish::SliceFrame> frames;
-  for (int k = 0; k < 4; ++k) {
-    geometry::SyntheticBell spec;
-    spec.contraction = 0.25 * k;
-    spec.time_s = k / 30.0;
-    frames.push_back(geometry::synthetic_bell(spec));
-  }
+  const std::vector<jellyfish::SliceFrame> frames = testing::synthetic_stroke(4, 0.25);
   std::array<std::size_t, 2> glb_size{};
   for (const bool velocities : {true, false}) {
     PipelineSettings s;

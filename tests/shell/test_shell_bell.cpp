@@ -10,6 +10,7 @@
 
 #include "jellysim/ode/backward_euler.hpp"
 #include "jellysim/ode/leapfrog.hpp"
+#include "shell_test_util.hpp"
 #include "jellysim/shell/shell_bell.hpp"
 #include "jellysim/shell/shell_dynamics.hpp"
 
@@ -19,13 +20,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-js::Vector jiggled(const js::Vector& x, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  js::Vector y = x;
-  for (Eigen::Index i = 0; i < y.size(); ++i) y(i) += amplitude * u(rng);
-  return y;
-}
+using js::testing::jiggled;
 
 js::Vector forces(const js::ShellBody& body, const js::Vector& x) {
   js::Vector f = js::Vector::Zero(x.size());
@@ -166,22 +161,6 @@ void run_stroke(js::ShellBell& bell, double t_end, Observe&& observe) {
   }
 }
 
-/// Mean radial displacement (m) of the margin's vertices within 30° of azimuth φ.
-double margin_displacement(const js::ShellBell& bell, const js::Vector& x, double phi) {
-  const auto& r = bell.surface().rings;
-  const std::size_t margin = r.first.size() - 1;
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < r.count[margin]; ++i) {
-    const int v = r.first[margin] + i;
-    const double azimuth = 2.0 * kPi * (i + r.offset[margin]) / r.count[margin];
-    if (std::abs(std::remainder(azimuth - phi, 2.0 * kPi)) > kPi / 6 + 1e-9) continue;
-    sum += js::axial_radius(x, v) - r.radius_m[margin];
-    ++count;
-  }
-  return sum / count;
-}
-
 }  // namespace
 
 TEST(ShellBell, SymmetricStrokeIsAxisymmetric) {
@@ -227,7 +206,7 @@ TEST(ShellBell, PacemakerSideContractsFirst) {
   const double delay = kPi * 0.5 * spec.slice.diameter_m / bell.conduction_speed_m_per_s();
   double near_first = 0.0, far_first = 0.0, near_at_01 = 0.0, far_at_01 = 0.0;
   run_stroke(bell, 0.1, [&](double t, const js::Vector& x) {
-    const double near = margin_displacement(bell, x, 0.0), far = margin_displacement(bell, x, kPi);
+    const double near = js::margin_displacement(bell, x, 0.0), far = js::margin_displacement(bell, x, kPi);
     if (near_first == 0.0 && near < -5e-4) near_first = t;
     if (far_first == 0.0 && far < -5e-4) far_first = t;
     near_at_01 = near, far_at_01 = far;  // the last call is at 0.1 s

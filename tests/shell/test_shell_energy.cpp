@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "shell_test_util.hpp"
 #include "jellysim/shell/shell_body.hpp"
 #include "jellysim/shell/triangle_mesh.hpp"
 
@@ -13,14 +14,7 @@ namespace js = jellysim::shell;
 
 namespace {
 
-/// A disc with every vertex moved by up to `amplitude` (m) in every direction, deterministic.
-js::Vector jiggled(const js::Vector& x, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  js::Vector y = x;
-  for (Eigen::Index i = 0; i < y.size(); ++i) y(i) += amplitude * u(rng);
-  return y;
-}
+using js::testing::jiggled;
 
 /// Largest |f + ∂W/∂x| over the components, central differences of the energy, relative to max |f|.
 double gradient_mismatch(const js::ShellBody& body, const js::Vector& x) {

@@ -24,6 +24,7 @@
 // is z = 0). Fluidless for now: no water, no scene keys.
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 #include "jellysim/jellyfish/jellyfish.hpp"
@@ -104,5 +105,10 @@ class ShellBell {
 
 /// Radial distance from the bell's axis (the y axis) of point i.
 inline double axial_radius(const Vector& x, int i) { return std::hypot(x(3 * i), x(3 * i + 2)); }
+
+/// The mean radial displacement (m, outward positive) at positions x of the margin's vertices
+/// within `half_width_rad` of azimuth φ: how far that side of the margin has moved in or out.
+double margin_displacement(const ShellBell& bell, const Vector& x, double azimuth_rad,
+                           double half_width_rad = std::numbers::pi / 6);
 
 }  // namespace jellysim::shell
