@@ -1,6 +1,9 @@
 // The main job (`jellysim run`): the default jellyfish simulated in 2D (thesis §7.1, Fig. 8.21),
 // then extrapolated to a lit, noisy 3D animation (§7.2–7.4) written as MP4, glTF, PNG frames,
 // meshes and an HTML viewer, with the swimming metrics and summary.json.
+#include <memory>
+#include <utility>
+
 #include "jellysim/core/interrupt.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
@@ -24,9 +27,13 @@ void prepare_loop(const jellyfish::LoopSettings& loop, jellyfish::SwimSettings& 
   settings = jellyfish::loop_search_settings(settings, loop);
   const int per_cycle = jellyfish::frames_per_cycle(settings.frames_per_second, settings.jellyfish().frequency_hz);
   const double diameter = settings.jellyfish().diameter_m, frequency = settings.jellyfish().frequency_hz;
+  // Asked before every step; the answer changes only when a frame was recorded.
+  auto seen = std::make_shared<std::pair<std::size_t, bool>>(0, false);
   options.stop_when = [=](const jellyfish::SwimRecord& rec) {
-    return jellyfish::search_loop(rec.frames, per_cycle, loop, diameter, frequency)
-        .recorded(rec.frames.size(), per_cycle);
+    if (rec.frames.size() != seen->first)
+      *seen = {rec.frames.size(), jellyfish::search_loop(rec.frames, per_cycle, loop, diameter, frequency)
+                                      .recorded(rec.frames.size(), per_cycle)};
+    return seen->second;
   };
   pipeline.geometry.noise.time_frequency_hz = 0.0;  // the noise's drift does not repeat: frozen in a loop
 }
