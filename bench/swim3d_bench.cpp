@@ -1,6 +1,6 @@
 // The 3D swimmer's speed (issue 40 part 5; docs/three-d.md "Speed"):
 //  - BM_Swim3dStep/<cells across the bell>/<threads>: coupled steps of the built-in bell (the slice's
-//    4 cm bell as a shell, edges 0.8 of a cell) from rest, in a tank four bell diameters wide, deep
+//    4 cm bell as a shell, edges half a cell) from rest, in a tank four bell diameters wide, deep
 //    and tall solved on its quarter: at 24 cells across, the issue's 48 × 96 × 48 quarter tank
 //    (96 × 96 × 96 whole). One iteration is one coupled step (one frame per step). Counters: ms per step and its split
 //    (transfer, fluid, Krylov), GMRES iterations per step, simulated seconds per wall second
@@ -21,7 +21,7 @@ Swim3dSpec bench_spec(int across, int threads) {
   s.tank_size_m = {4 * D, 4 * D, 4 * D};
   s.cells = {4 * across, 4 * across, 4 * across};
   s.aperture_height_m = 1.25 * D;
-  s.bell.target_edge_m = 0.8 * D / across;
+  s.bell.target_edge_m = 0.5 * D / across;  // Peskin's rule: markers half a cell apart
   s.frames_per_cycle = 100000;  // a frame per coupled step
   s.threads = threads;
   return s;

@@ -4,9 +4,10 @@
 // the swimming summary and the wall-clock split per step:
 //   swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N]
 //          [conduction=M_PER_S] [no-tentacles]
-// edge: the shell's edge length in fluid cells (default 0.8); tall: the tank's height in bell
-// diameters (default 5; the aperture starts 1.25 diameters above the floor); conduction: the
-// pacemaker's impulse's speed around the margin (default: the slice's, meridian arc / neural delay).
+// edge: the shell's edge length in fluid cells (default 0.5: Peskin's rule, which the slice's
+// markers follow too); tall: the tank's height in bell diameters (default 5; the aperture starts
+// 1.25 diameters above the floor); conduction: the pacemaker's impulse's speed around the margin
+// (default: the slice's, meridian arc / neural delay).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
   const int across = std::atoi(argv[1]);
   const int cycles = std::atoi(argv[2]);
   s3::Swim3dSpec spec;
-  double edge_cells = 0.8;
+  double edge_cells = 0.5;
   int tall = 5;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
