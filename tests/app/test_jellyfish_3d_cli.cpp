@@ -20,11 +20,12 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kScene3d = std::string(JELLYSIM_SOURCE_DIR) + "/scenes/jellyfish-3d.toml";
-/// The tiny tank: 10 cm a side, 16 cells (6.25 mm), the aperture 3 cm up, 5 mm tentacles, 8 frames
-/// a cycle and one frame (0.18 s, the first half of the contraction).
-const std::string kTiny = kScene3d +
-                          " --set tank.size=[0.1,0.1,0.1] --set tank.cells=[16,16,16] --set jellyfish.position=[0,0.03]"
-                          " --set jellyfish.tentacle_length=0.005 --set output.frames_per_cycle=8 --duration 0.18";
+/// The tiny tank: 10 cm a side, 16 cells (6.25 mm), the aperture 3 cm up, 5 mm tentacles.
+const std::string kTinyTank = kScene3d +
+                              " --set tank.size=[0.1,0.1,0.1] --set tank.cells=[16,16,16] --set jellyfish.position=[0,0.03]"
+                              " --set jellyfish.tentacle_length=0.005";
+/// ... 8 frames a cycle and one frame (0.18 s, the first half of the contraction).
+const std::string kTiny = kTinyTank + " --set output.frames_per_cycle=8 --duration 0.18";
 
 fs::path fresh(const std::string& name) { return cli::fresh_scratch_dir("jelly3d_" + name); }
 
@@ -97,14 +98,33 @@ TEST(Determinism, Simulate3dIsTheSameForOneAndTwoThreads) {
   std::string csv[2];
   for (int threads : {1, 2}) {
     const fs::path dir = fresh("threads" + std::to_string(threads));
-    const cli::CliResult r = cli::run_jellysim("simulate " + kTiny + " --set coupling.threads=" + std::to_string(threads) +
-                                               " --set output.vtk=false --quiet --out " + dir.string());
+    const cli::CliResult r =
+        cli::run_jellysim("simulate " + kTinyTank + " --set output.frames_per_cycle=16 --duration 0.09 --set "
+                          "coupling.threads=" + std::to_string(threads) + " --set output.vtk=false --quiet --out " +
+                          dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     csv[threads - 1] = cli::read_text_file(dir / "metrics.csv");
     fs::remove_all(dir);
   }
   EXPECT_FALSE(csv[0].empty());
   EXPECT_EQ(csv[0], csv[1]);
+}
+
+// A step that fails (here GMRES held to one iteration) ends the run: the frames so far are written,
+// summary.json says when and where, exit 1.
+TEST(Jellyfish3dCli, AFailedStepKeepsWhatWasRecordedAndSaysWhenAndWhere) {
+  const fs::path dir = fresh("failed");
+  const cli::CliResult r = cli::run_jellysim("simulate " + kTiny + " --set coupling.krylov_max_iterations=1 "
+                                             "--set coupling.threads=1 --quiet --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  const std::string failure = s["failure"];
+  EXPECT_EQ(failure.rfind("simulation diverged at t = ", 0), 0u) << failure;
+  EXPECT_NE(failure.find("(step 1): 3D swimmer: the semi-implicit solve did not converge"), std::string::npos) << failure;
+  std::string header;
+  EXPECT_EQ(read_rows(cli::read_text_file(dir / "metrics.csv"), header).size(), 1u);  // the frame at t = 0
+  fs::remove_all(dir);
 }
 
 TEST(Jellyfish3dCli, BadValuesNameTheFieldAndWriteNothing) {
