@@ -42,13 +42,9 @@ std::vector<std::vector<double>> read_rows(const std::string& csv, std::string& 
   return rows;
 }
 
-/// `jellysim ARGS --out DIR` is refused: exit 2, a message naming `named`, nothing written.
+/// `jellysim ARGS` is refused: exit 2, the message naming `named`, no output directory.
 void expect_refused(const std::string& args, const std::string& named) {
-  const fs::path dir = fresh("refused");
-  const cli::CliResult r = cli::run_jellysim(args + " --quiet --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
-  EXPECT_NE(r.output.find(named), std::string::npos) << args << ": " << r.output;
-  EXPECT_FALSE(fs::exists(dir)) << args;
+  cli::expect_refused(args, named, fresh("refused"));
 }
 
 }  // namespace
