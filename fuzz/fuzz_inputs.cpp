@@ -18,6 +18,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/io/ib2d_files.hpp"
+#include "jellysim/scene/jellyfish_3d_scene.hpp"
 #include "jellysim/scene/jellyfish_scene.hpp"
 
 namespace {
@@ -40,11 +41,13 @@ void write(const fs::path& path, std::string_view text) {
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
-/// The built-in jellyfish scene with `overlay` merged onto it, read and validated.
+/// The built-in jellyfish scene with `overlay` merged onto it, read and validated (a 3D scene by
+/// the 3D reader, as `jellysim simulate` does).
 void read_scene(std::string_view overlay) {
   config::Config c = scene::builtin_jellyfish_scene();
   c.merge(config::Config::parse(overlay, "fuzz.toml"));
-  scene::read_swim_settings(c);
+  if (scene::is_3d_scene(c)) scene::read_swim3d_settings(c);
+  else scene::read_swim_settings(c);
 }
 
 void read_polygon(std::string_view text) {

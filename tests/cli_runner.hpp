@@ -13,6 +13,8 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 extern char** environ;
 
 namespace jellysim::testing {
@@ -57,6 +59,14 @@ inline std::filesystem::path fresh_scratch_dir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("jellysim_test_" + name);
   std::filesystem::remove_all(dir);
   return dir;
+}
+
+/// `jellysim ARGS --quiet --out DIR` is refused: exit 2, a message naming `named`, DIR not created.
+inline void expect_refused(const std::string& args, const std::string& named, const std::filesystem::path& dir) {
+  const CliResult r = run_jellysim(args + " --quiet --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+  EXPECT_NE(r.output.find(named), std::string::npos) << args << ": " << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir)) << args;
 }
 
 /// Starts jellysim with `args` (no shell, output discarded) and returns its pid, or -1.

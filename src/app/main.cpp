@@ -745,7 +745,8 @@ std::vector<Command> commands() {
        }},
       {"simulate",
        "Simulate a 2D jellyfish scene alone (default: thesis Fig. 8.21's scene): metrics.csv, slices.csv, plots, a "
-       "picture and VTK fields per frame, summary.json",
+       "picture and VTK fields per frame, summary.json; or a 3D one (tank.geometry = \"3d\", "
+       "scenes/jellyfish-3d.toml): metrics.csv, summary.json, the flow per frame",
        [](CLI::App& cmd) {
          return define_scene_command(cmd, "simulate",
                                      "Scene file (TOML, scene = \"jellyfish\"); omitted: the built-in scene",

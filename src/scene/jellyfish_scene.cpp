@@ -74,9 +74,13 @@ std::vector<Parameter> scene_and_tank_parameters() {
 
       number("tank.width", "0.24", "m", kTankSize, "six bell diameters"),
       number("tank.height", "0.48", "m", kTankSize, "tank height: five cycles and the wake below (docs/convergence.md)"),
-      {"tank.cells", Type::integers, "[384, 768]", "", Range::closed(4, 4096), {}, 2,
+      {"tank.cells", Type::integers, "[384, 768]", "", Range::closed(4, 4096), {}, 0,
        "fluid cells along x and y [nx, ny]: 0.625 mm, 64 across the bell, the coarsest grid within 10 % of the "
-       "converged distance per cycle (docs/convergence.md)"},
+       "converged distance per cycle (docs/convergence.md); with tank.geometry = \"3d\" three, [nx, ny, nz]: the "
+       "whole tank's cells, even across a mirror plane (tank.symmetry)"},
+      vec3("tank.size", "[0.0, 0.0, 0.0]", "m", Range::closed(0.0, 100.0),
+           "tank.geometry = \"3d\" only: the tank's [width (x), height (y), depth (z)], each in (0, 100]; "
+           "[0, 0, 0]: [tank.width, tank.height, tank.width]"),
       choice("tank.solver", "semi-lagrangian", fluid::fluid_solver_names(),
              "semi-lagrangian (Stam, §4.2, with tank.advection) or eulerian (§4.1, with tank.convection; docs/jellyfish.md)"),
       choice("tank.convection", "donor-cell", fluid::convection_scheme_names(),
@@ -97,10 +101,14 @@ std::vector<Parameter> scene_and_tank_parameters() {
            "uniform background flow at the start (pair with inflow/outflow or periodic sides)"),
       choice("tank.symmetry", "auto", {"auto", "mirror", "none"},
              "auto: keep the mirror symmetry of a scene that is its own mirror image about the centre line "
-             "(docs/jellyfish.md); mirror: insist; none"),
-      choice("tank.geometry", "planar", {"planar", "axisymmetric"},
+             "(docs/jellyfish.md); mirror: insist; none. 3D: auto solves the quarter tank (mirror planes x = 0 "
+             "and z = 0) for the symmetric stroke, the half z >= 0 with a pacemaker at azimuth 0 or 180 degrees, "
+             "the whole tank otherwise; mirror: the same, refused where no plane is the stroke's own; none: the "
+             "whole tank (docs/three-d.md)"),
+      choice("tank.geometry", "planar", {"planar", "axisymmetric", "3d"},
              "planar: the slice is a plane section (the thesis); axisymmetric: the slice is the meridian of a body "
-             "of revolution about the centre line, the water 3D around it (docs/jellyfish.md)"),
+             "of revolution about the centre line, the water 3D around it (docs/jellyfish.md); 3d: the bell as an "
+             "elastic shell in 3D water, `jellysim simulate` only (docs/three-d.md, \"The 3D scene\")"),
       boolean("tank.half_tank", "true",
               "while the symmetry is kept, solve only the east half (a symmetry plane on the centre line)"),
   };
@@ -111,7 +119,9 @@ std::vector<Parameter> jellyfish_body_parameters() {
   return {
       boolean("jellyfish.enabled", "true",
               "false: no jellyfish here (e.g. flow past obstacles); [[objects]] may still add some"),
-      vec2("jellyfish.position", "[0.12, 0.08]", "m", kAny, "aperture centre, inside the tank"),
+      vec2("jellyfish.position", "[0.12, 0.08]", "m", kAny,
+           "aperture centre, inside the tank; 3D: [0, aperture height], the bell's axis on the tank's centre line "
+           "x = z = 0 (the 3D tank spans x in [-W/2, W/2], y in [0, H], z in [-D/2, D/2])"),
       number("jellyfish.tilt_deg", "0.0", "°", Range::closed(-360, 360), "swimming direction from +y, counter-clockwise"),
       number("jellyfish.diameter", "0.04", "m", kBodyLength, "bell diameter (Fig. 8.21)"),
       number("jellyfish.height", "0.028", "m", kBodyLength, "bell height"),
@@ -231,13 +241,31 @@ std::vector<Parameter> coupling_and_output_parameters() {
       number("output.picture_zoom", "6.0", "bell diameters", Range::closed(0.0, 1000.0),
              "width of the picture; 0: the whole tank, else at least 0.01"),
       boolean("output.vtk", "true", "fluid fields, tracers and the body per frame (frames/*.vti, *.vtp, jellyfish.pvd)"),
+      integer("output.frames_per_cycle", "0", 0, 10000,
+              "tank.geometry = \"3d\" only: frames recorded per contraction cycle (frame k at k / (frequency · n)); "
+              "0: the nearest whole number to 1 / (frequency · output.frame_interval)"),
+  };
+}
+
+/// The 3D bell's own fields (tank.geometry = "3d"; docs/three-d.md): its shell mesh, pacemaker and
+/// tentacle rods. Its shape, material and stroke are the [jellyfish] fields above.
+std::vector<Parameter> shell_parameters() {
+  return {
+      number("jellyfish.shell_edge", "0.0", "m", Range::closed(0.0, 1.0),
+             "3D only: the shell mesh's edge length, in [diameter / 1000, diameter / 2]; 0: 0.8 of a fluid cell"),
+      boolean("jellyfish.pacemaker", "false",
+              "3D only: the impulse starts at one point of the margin (the bell turns); false: the margin fires at once"),
+      number("jellyfish.pacemaker_azimuth_deg", "0.0", "°", Range::closed(-360.0, 360.0),
+             "3D only: where on the margin the pacemaker sits, from +x toward +z (0 or 180: the half tank is solved)"),
+      integer("jellyfish.tentacle_count", "12", 0, 1000,
+              "3D only: tentacles (rods of jellyfish.tentacle_length) hanging evenly around the margin; 0: none"),
   };
 }
 
 ParameterTable make_jellyfish_scene() {
   std::vector<Parameter> p;
   for (auto section : {scene_and_tank_parameters, jellyfish_body_parameters, jellyfish_stroke_parameters,
-                       coupling_and_output_parameters})
+                       shell_parameters, coupling_and_output_parameters})
     for (Parameter& q : section()) p.push_back(std::move(q));
   return ParameterTable("jellyfish", kPreamble, std::move(p));
 }
@@ -285,17 +313,9 @@ void read_elastic_constants(const Reader& r, jellyfish::JellyfishSpec& j) {
   j.tentacle_bending_factor = r.number("jellyfish.tentacle_bending_factor");
 }
 
-/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
-jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling::TankSpec& t) {
-  const Reader r(c, jellyfish_scene());
-  jellyfish::JellyfishSpec j;
-  j.aperture_centre_m = r.vec2("jellyfish.position");
-  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
-        j.aperture_centre_m.y < t.height_m))
-    throw InputError("field 'jellyfish.position' = [" + config::format_number(j.aperture_centre_m.x) + ", " +
-                     config::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
-                     config::format_number(t.width_m) + "] x [0, " + config::format_number(t.height_m) + "]");
-  j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
+/// The bell's shape, tentacles' length, material and stroke (§7.1, §6.2, Fig. 8.21): the
+/// [jellyfish] fields the 2D slice and the 3D shell (ShellBellSpec::slice) share.
+void read_body_and_stroke(const Reader& r, jellyfish::JellyfishSpec& j) {
   j.diameter_m = r.number("jellyfish.diameter");
   j.height_m = r.number("jellyfish.height");
   j.tentacle_length_m = r.number("jellyfish.tentacle_length");
@@ -303,18 +323,9 @@ jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling:
     throw InputError("field 'jellyfish.tentacle_length' = " + config::format_number(j.tentacle_length_m) +
                      " is out of range: 0 (no tentacles) or [" + config::format_number(kMinBodyLength) + ", 100] m");
   j.thickness_m = r.number("jellyfish.thickness");
-  j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
-                                                                       : jellyfish::UmbrellaModel::angular;
-  const double spacing = r.number("jellyfish.spacing");
-  j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
-  j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
   j.elastic_model = r.choice("jellyfish.elastic_model") == "thesis" ? jellyfish::ElasticModel::thesis
                                                                     : jellyfish::ElasticModel::continuum;
   refuse_other_models_fields(r, j.elastic_model);
-  const std::string root = r.choice("jellyfish.tentacle_root");
-  j.tentacle_root = root == "axis"     ? jellyfish::TentacleRoot::axis
-                    : root == "margin" ? jellyfish::TentacleRoot::margin
-                                       : jellyfish::TentacleRoot::automatic;
   read_elastic_constants(r, j);
   j.frequency_hz = r.number("jellyfish.frequency");
   j.gamma = r.number("jellyfish.gamma");
@@ -328,7 +339,29 @@ jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling:
   j.controller_alpha = r.number("jellyfish.controller_alpha");
   j.profile.trochoid_skew = r.number("jellyfish.trochoid_skew");
   j.phase_cycles = r.number("jellyfish.phase");
+}
 
+/// One jellyfish from the [jellyfish] table of `c` (§7.1, Fig. 8.21), in the tank `t`.
+jellyfish::JellyfishSpec read_jellyfish(const config::Config& c, const coupling::TankSpec& t) {
+  const Reader r(c, jellyfish_scene());
+  jellyfish::JellyfishSpec j;
+  j.aperture_centre_m = r.vec2("jellyfish.position");
+  if (!(j.aperture_centre_m.x > 0 && j.aperture_centre_m.x < t.width_m && j.aperture_centre_m.y > 0 &&
+        j.aperture_centre_m.y < t.height_m))
+    throw InputError("field 'jellyfish.position' = [" + config::format_number(j.aperture_centre_m.x) + ", " +
+                     config::format_number(j.aperture_centre_m.y) + "] is outside the tank [0, " +
+                     config::format_number(t.width_m) + "] x [0, " + config::format_number(t.height_m) + "]");
+  j.tilt_rad = r.number("jellyfish.tilt_deg") * kDegree;
+  read_body_and_stroke(r, j);
+  j.model = r.choice("jellyfish.model") == "mesh" ? jellyfish::UmbrellaModel::mesh
+                                                                       : jellyfish::UmbrellaModel::angular;
+  const double spacing = r.number("jellyfish.spacing");
+  j.max_spacing_m = spacing > 0 ? spacing : coupling::peskin_spacing(t);
+  j.min_segments_per_side = static_cast<int>(r.integer("jellyfish.min_segments_per_side"));
+  const std::string root = r.choice("jellyfish.tentacle_root");
+  j.tentacle_root = root == "axis"     ? jellyfish::TentacleRoot::axis
+                    : root == "margin" ? jellyfish::TentacleRoot::margin
+                                       : jellyfish::TentacleRoot::automatic;
   j.steering = r.boolean("jellyfish.steering");
   j.steer_target_m = r.vec2("jellyfish.steer_target");
   j.steer_gain = r.number("jellyfish.steer_gain");
@@ -379,10 +412,32 @@ void read_objects(const config::Config& c, jellyfish::SwimSettings& s) {
 
 }  // namespace
 
-/// More recorded frames than a run can write or anyone view (a million at 30 fps is 9 hours).
-constexpr double kMaxFrames = 1e6;
+jellyfish::JellyfishSpec read_jellyfish_body(const config::Config& c) {
+  jellyfish::JellyfishSpec j;
+  read_body_and_stroke(Reader(c, jellyfish_scene()), j);
+  return j;
+}
 
 namespace {
+
+/// The fields only the 3D scene reads (tank.geometry = "3d"), refused in a 2D scene unless left at
+/// their defaults: the 2D run would ignore them.
+constexpr const char* kFieldsOf3d[] = {"tank.size", "output.frames_per_cycle", "jellyfish.shell_edge",
+                                       "jellyfish.pacemaker", "jellyfish.pacemaker_azimuth_deg",
+                                       "jellyfish.tentacle_count"};
+
+/// A 3D scene here (the 2D reader: sweep, view, batch, the experiments) or a 3D-only field in a 2D
+/// scene: refused, naming the field (docs/three-d.md, "The 3D scene").
+void refuse_3d(const Reader& r) {
+  if (r.choice("tank.geometry") == "3d")
+    throw InputError("field 'tank.geometry' = \"3d\": this command runs the 2D slice; the 3D scene runs with "
+                     "`jellysim simulate` (docs/three-d.md, \"The 3D scene\")");
+  for (const char* key : kFieldsOf3d)
+    if (!r.holds_default(key))
+      throw InputError("field '" + std::string(key) + "' = " + r.config().literal(key) +
+                       " belongs to the 3D scene (tank.geometry = \"3d\"); this scene's geometry is \"" +
+                       r.choice("tank.geometry") + "\": leave it at " + r.table().at(key).value);
+}
 
 /// What can be told before any body is built (issue 23): each jellyfish fits the tank at all (its
 /// diameter, height and tentacles are each at most the tank's diagonal, or no placement fits), and
@@ -415,6 +470,9 @@ coupling::TankSpec read_tank(const Reader& r) {
   t.width_m = r.number("tank.width");
   t.height_m = r.number("tank.height");
   const auto cells = r.integers("tank.cells");
+  if (cells.size() != 2)
+    throw InputError("field 'tank.cells' has " + std::to_string(cells.size()) + " entries: it must have 2, [nx, ny], "
+                     "each in [4, 4096] (three, [nx, ny, nz], only with tank.geometry = \"3d\")");
   t.cells_x = static_cast<int>(cells[0]);
   t.cells_y = static_cast<int>(cells[1]);
   t.solver = r.choice("tank.solver");
@@ -472,6 +530,8 @@ coupling::CouplingSettings read_coupling(const Reader& r, double frame_interval_
   return k;
 }
 
+}  // namespace
+
 /// output.frame_interval, or output.fps (frame k at k / fps): one of the two. The interval given
 /// differs from the table's default when it was named (a scene naming the default itself is not
 /// told apart from one leaving it out).
@@ -493,11 +553,10 @@ void read_frame_rate(const Reader& r, jellyfish::SwimSettings& s) {
   s.frame_interval_s = 1.0 / fps;
 }
 
-}  // namespace
-
 jellyfish::SwimSettings read_swim_settings(const config::Config& c) {
   const Reader r(c, jellyfish_scene());
   r.validate_all();
+  refuse_3d(r);
   jellyfish::SwimSettings s;
   s.duration_s = r.number("duration");
   read_frame_rate(r, s);

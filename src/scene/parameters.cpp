@@ -253,6 +253,19 @@ std::vector<std::string> Reader::choices(std::string_view key) const {
   return v;
 }
 
+bool Reader::holds_default(std::string_view key) const {
+  const Parameter& p = table_.at(key);
+  if (p.value.empty()) throw std::logic_error("parameter '" + std::string(key) + "' has no default");
+  const config::Config d = config::Config::parse("x = " + p.value, "the default of " + std::string(key));
+  switch (p.type) {
+    case Type::number: return config_.number(key) == d.number("x");
+    case Type::vec2:
+    case Type::numbers: return config_.numbers(key) == d.numbers("x");
+    case Type::tables: return config_.array_size(key) == d.array_size("x");
+    default: return config_.literal(key) == d.literal("x");
+  }
+}
+
 void Reader::validate_all() const {
   for (const Parameter& p : table_.parameters()) {
     if (!config_.has(p.key)) continue;

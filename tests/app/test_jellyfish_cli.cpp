@@ -107,17 +107,7 @@ TEST(JellyfishCli, ConvergenceStudyWritesItsTableChartAndGridConvergenceIndex) {
   fs::remove_all(dir);
 }
 
-namespace {
-
-/// `jellysim ARGS --out DIR` is refused: exit 2, a message naming `named`, nothing written.
-void expect_refused(const std::string& args, const std::string& named, const fs::path& dir) {
-  const Result r = run_cli(args + " --quiet --out " + dir.string());
-  EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
-  EXPECT_NE(r.output.find(named), std::string::npos) << args << ": " << r.output;
-  EXPECT_FALSE(fs::exists(dir)) << args;
-}
-
-}  // namespace
+using cli::expect_refused;
 
 TEST(JellyfishCli, ConvergenceStudyRefusesGridsItCannotRefine) {
   const fs::path dir = fresh("convergence_bad");

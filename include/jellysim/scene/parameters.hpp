@@ -113,6 +113,9 @@ class Reader {
 
   /// Checks every parameter of the table present in the configuration by its type and range.
   void validate_all() const;
+  /// Whether `key` holds the table's default (numbers compared as numbers, [[tables]] by count);
+  /// for fields a mode ignores or refuses unless left alone.
+  bool holds_default(std::string_view key) const;
 
   const config::Config& config() const { return config_; }
   const ParameterTable& table() const { return table_; }

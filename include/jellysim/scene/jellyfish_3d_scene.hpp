@@ -1,0 +1,33 @@
+#pragma once
+// The jellyfish scene in 3D water (tank.geometry = "3d"; issue 40 part 4, docs/three-d.md "The 3D
+// scene"): the jellyfish scene's one parameter table (scene/jellyfish_scene.hpp) read into the 3D
+// swimmer's spec (swim3d::Swim3dSpec) and the run's frames. The [jellyfish] shape, material and
+// stroke are read by the 2D scene's reader (read_jellyfish_body); fields the 3D model does not
+// have are refused unless left at their defaults, the 2D solver's own knobs are ignored (listed in
+// docs/three-d.md).
+#include <cstdint>
+
+#include "jellysim/config/config.hpp"
+#include "jellysim/swim3d/swimmer_3d.hpp"
+
+namespace jellysim::scene {
+
+struct Swim3dSettings {
+  swim3d::Swim3dSpec spec;
+  double duration_s = 0.0;  ///< as asked (`duration`, --duration)
+  /// Frames after the one at t = 0: duration · frequency · frames_per_cycle rounded to the nearest
+  /// whole number, at least 1 (the run ends on the frame nearest the duration, as the 2D tank's).
+  std::int64_t frames = 0;
+  bool vtk = false;                     ///< output.vtk: the flow of every frame
+  double estimated_memory_bytes = 0.0;  ///< the water's (fluid3d::estimated_memory_bytes_3d) on the solved grid
+  /// The last frame's time, frames / (frequency · frames_per_cycle).
+  double end_time_s() const;
+};
+
+/// Whether the configuration is a 3D scene (tank.geometry = "3d").
+bool is_3d_scene(const config::Config& c);
+/// Reads and validates a 3D jellyfish scene: InputError naming the field and the allowed values
+/// (also when the water's estimated memory exceeds the budget, core/memory.hpp).
+Swim3dSettings read_swim3d_settings(const config::Config& c);
+
+}  // namespace jellysim::scene

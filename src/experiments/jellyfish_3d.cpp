@@ -1,0 +1,227 @@
+// `jellysim simulate` on a 3D scene (tank.geometry = "3d"; issue 40 part 4, docs/three-d.md "The 3D
+// scene"): the shell bell in 3D water (swim3d::Swimmer3d) frame by frame, with metrics.csv (the
+// bell's centroid, velocity, axis, heading, tilt and cavity volume per frame), summary.json (the
+// swimming per cycle, the grid, the cost) and, with output.vtk, the flow of every frame
+// (frames/field_NNNNNN.vti and jellyfish.pvd, named as the 2D run's). A failure (the flow no longer
+// finite, GMRES not converging) or SIGINT/SIGTERM ends the run with the frames recorded so far
+// written and the time and step in the summary's failure, as the 2D run does (docs/architecture.md).
+#include "jellyfish_3d.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "jellysim/core/errors.hpp"
+#include "jellysim/core/interrupt.hpp"
+#include "jellysim/core/memory.hpp"
+#include "jellysim/io/vtk_fields.hpp"
+#include "jellysim/scene/jellyfish_3d_scene.hpp"
+
+namespace jellysim::experiments {
+namespace {
+
+/// What a run recorded: its frames (the first at t = 0), why it stopped early (empty: it did not)
+/// and what it cost.
+struct Recording3d {
+  std::vector<swim3d::Frame3d> frames;
+  std::string failure;
+  swim3d::Swim3dTimings timings;
+  std::size_t markers = 0;
+  double wall_seconds = 0.0;
+};
+
+/// The flow of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the solved part of
+/// the tank (the quarter or half tank's cells), and the time series jellyfish.pvd.
+class FlowFiles3d {
+ public:
+  explicit FlowFiles3d(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
+
+  void write(const swim3d::Swimmer3d& swimmer, std::size_t index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "field_%06zu.vti", index);
+    io::write_streamed(frames_, name, [&](std::ostream& o) { io::write_flow_vti(o, swimmer.fluid().state()); });
+    entries_.push_back({swimmer.time_s(), std::string("frames/") + name, 0, "field"});
+    io::write_streamed(out_, "jellyfish.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
+  }
+
+ private:
+  const io::OutputDir& out_;
+  io::OutputDir frames_;
+  std::vector<io::PvdEntry> entries_;
+};
+
+/// "simulation diverged at t = … s (step N): why", the 2D run's words (sim/time_stepping.cpp).
+std::string diverged(const swim3d::Swimmer3d& s, const std::string& why) {
+  std::ostringstream m;
+  m << "simulation diverged at t = " << s.time_s() << " s (step " << s.timings().steps << "): " << why;
+  return m.str();
+}
+
+/// The first of a frame's figures that is not finite, named, or "".
+std::string non_finite(const swim3d::Frame3d& f) {
+  for (std::size_t d = 0; d < 3; ++d) {
+    if (!std::isfinite(f.centroid[d])) return "the bell's centroid is not finite";
+    if (!std::isfinite(f.velocity[d])) return "the bell's velocity is not finite";
+    if (!std::isfinite(f.axis[d])) return "the bell's axis is not finite";
+  }
+  return std::isfinite(f.cavity_volume_m3) ? "" : "the cavity's volume is not finite";
+}
+
+/// The next frame, or the failure that stopped the run before it (SIGINT/SIGTERM at a frame
+/// boundary; a step that threw; a figure that is not finite).
+std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::string& failure) {
+  if (const int signal = core::interrupt_signal()) {
+    failure = "interrupted by " + core::signal_name(signal) + " at t = " + std::to_string(swimmer.time_s()) +
+              " s (step " + std::to_string(swimmer.timings().steps) + ")";
+    return std::nullopt;
+  }
+  try {
+    swim3d::Frame3d f = swimmer.advance_frame();
+    if (const std::string why = non_finite(f); !why.empty()) {
+      failure = diverged(swimmer, why);
+      return std::nullopt;
+    }
+    return f;
+  } catch (const std::runtime_error& e) {
+    failure = diverged(swimmer, e.what());
+    return std::nullopt;
+  }
+}
+
+/// Runs the frames, writing the flow of each when asked; progress after every frame.
+Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out,
+                   const sim::ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  Recording3d rec;
+  const auto swimmer = [&] {
+    const fluid3d::Index3 n = swim3d::solved_grid(settings.spec).cells();
+    const core::MemoryStage building("building the 3D simulation (" + std::to_string(n[0]) + " x " +
+                                     std::to_string(n[1]) + " x " + std::to_string(n[2]) + " fluid cells)");
+    return std::make_unique<swim3d::Swimmer3d>(settings.spec);
+  }();
+  rec.markers = swimmer->markers().size();
+  std::optional<FlowFiles3d> files;
+  if (settings.vtk) files.emplace(out);
+  const auto record = [&](swim3d::Frame3d f) {
+    if (files) files->write(*swimmer, rec.frames.size());
+    rec.frames.push_back(std::move(f));
+  };
+  record(swimmer->frame());
+  for (std::int64_t k = 0; k < settings.frames; ++k) {
+    std::optional<swim3d::Frame3d> f = next_frame(*swimmer, rec.failure);
+    if (!f) break;
+    record(std::move(*f));
+    if (progress) progress(swimmer->time_s(), settings.end_time_s(), swimmer->timings().steps);
+  }
+  rec.timings = swimmer->timings();
+  rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return rec;
+}
+
+/// metrics.csv: one row per frame (tank frame, SI units; docs/three-d.md "The 3D scene").
+void write_metrics_3d(const io::OutputDir& out, const std::vector<swim3d::Frame3d>& frames) {
+  io::CsvWriter csv({"t", "x", "y", "z", "velocity_x", "velocity_y", "velocity_z", "speed", "heading_deg", "tilt_deg",
+                     "axis_x", "axis_y", "axis_z", "volume", "krylov_iterations"});
+  for (const swim3d::Frame3d& f : frames) {
+    const swim3d::Vec3& c = f.centroid;
+    const swim3d::Vec3& v = f.velocity;
+    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    csv.row({f.time_s, c[0], c[1], c[2], v[0], v[1], v[2], speed, f.heading_deg, f.tilt_deg, f.axis[0], f.axis[1],
+             f.axis[2], f.cavity_volume_m3, static_cast<double>(f.krylov_iterations)});
+  }
+  out.write_text("metrics.csv", csv.text());
+}
+
+/// A figure that may be NaN (a mean over no cycles) as JSON: null then.
+nlohmann::ordered_json number_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; }
+
+/// The grid the water was solved on (the whole tank, its half or its quarter).
+nlohmann::ordered_json grid_figures(const swim3d::Swim3dSpec& spec) {
+  const fluid3d::Grid3d g = swim3d::solved_grid(spec);
+  return {{"tank_cells", spec.cells},
+          {"tank_size_m", spec.tank_size_m},
+          {"solved_cells", g.cells()},
+          {"symmetry", std::string(swim3d::to_string(swim3d::resolved_symmetry(spec)))},
+          {"cell_size_m", {g.h(0), g.h(1), g.h(2)}},
+          {"cells_across_bell", spec.bell.slice.diameter_m / g.h(0)}};
+}
+
+/// The swimming per cycle (swim3d::summarize: cycles start at t = k / f).
+void add_swimming_figures(nlohmann::ordered_json& j, const scene::Swim3dSettings& s, const Recording3d& rec) {
+  const swim3d::SwimSummary3d sum = swim3d::summarize(rec.frames, s.spec.frames_per_cycle);
+  j["distance_per_cycle_m"] = number_or_null(sum.distance_per_cycle_m);
+  j["first_cycle_m"] = sum.first_cycle_m;
+  j["cycle_displacements_m"] = sum.cycle_distance_m;
+  j["heading_change_deg_per_cycle"] = number_or_null(sum.heading_change_deg_per_cycle);
+  j["cycle_heading_changes_deg"] = sum.cycle_heading_deg;
+  j["final_heading_deg"] = sum.final_heading_deg;
+  j["final_tilt_deg"] = sum.final_tilt_deg;
+  j["sideways_m"] = sum.sideways_m;
+}
+
+/// The run's frames and cost (wall-clock figures: summary.json only, never a CSV).
+void add_cost_figures(nlohmann::ordered_json& j, const scene::Swim3dSettings& s, const Recording3d& rec) {
+  const swim3d::Swim3dTimings& t = rec.timings;
+  const double steps = t.steps > 0 ? static_cast<double>(t.steps) : 1.0;
+  const double simulated = rec.frames.empty() ? 0.0 : rec.frames.back().time_s;
+  j["simulated_seconds"] = simulated;
+  j["wall_seconds"] = rec.wall_seconds;
+  j["realtime_factor"] = rec.wall_seconds > 0 ? simulated / rec.wall_seconds : 0.0;
+  j["frames"] = rec.frames.size();
+  j["frames_per_cycle"] = s.spec.frames_per_cycle;
+  j["duration"] = s.duration_s;
+  j["duration_rounded_to_frames"] = s.end_time_s();
+  j["steps"] = t.steps;
+  j["ms_per_step"] = 1e3 * t.total_s / steps;
+  j["ms_per_step_split"] = {{"transfer", 1e3 * t.transfer_s / steps},
+                            {"fluid", 1e3 * t.fluid_s / steps},
+                            {"krylov", 1e3 * t.krylov_s / steps}};
+  j["krylov_iterations_per_step"] = static_cast<double>(t.krylov_iterations) / steps;
+  j["estimated_memory_bytes"] = s.estimated_memory_bytes;
+}
+
+nlohmann::ordered_json figures_3d(const scene::Swim3dSettings& s, const Recording3d& rec) {
+  nlohmann::ordered_json j;
+  j["units"] = {{"length", "m"}, {"time", "s"}, {"velocity", "m/s"}, {"volume", "m^3"}, {"angle", "deg"}};
+  j["geometry"] = "3d";
+  j["bell_diameter"] = s.spec.bell.slice.diameter_m;
+  j["bell_height"] = s.spec.bell.slice.height_m;
+  j["frequency"] = s.spec.bell.slice.frequency_hz;
+  j["cycles"] = (rec.frames.empty() ? 0.0 : rec.frames.back().time_s) * s.spec.bell.slice.frequency_hz;
+  j["pacemaker"] = s.spec.bell.pacemaker;
+  add_swimming_figures(j, s, rec);
+  j["grid"] = grid_figures(s.spec);
+  j["markers"] = rec.markers;
+  add_cost_figures(j, s, rec);
+  return j;
+}
+
+/// The solved grid and the water's memory, before the run (a terminal's progress display only).
+void print_estimate(const scene::Swim3dSettings& s) {
+  const fluid3d::Index3 n = swim3d::solved_grid(s.spec).cells();
+  std::cout << "3D water: " << n[0] << " x " << n[1] << " x " << n[2] << " cells solved ("
+            << swim3d::to_string(swim3d::resolved_symmetry(s.spec)) << " tank), about "
+            << core::format_bytes(s.estimated_memory_bytes) << "; " << s.frames << " frames\n";
+}
+
+}  // namespace
+
+std::function<Outcome(const io::OutputDir&)> prepare_jellyfish_3d(const Context& ctx) {
+  const scene::Swim3dSettings settings = scene::read_swim3d_settings(ctx.config);
+  if (ctx.checkpoints)
+    throw InputError("--checkpoint-every / --resume: the 3D scene (tank.geometry = \"3d\") has no checkpoints yet");
+  if (ctx.progress) print_estimate(settings);
+  return [settings, ctx](const io::OutputDir& out) {
+    const Recording3d rec = run_3d(settings, out, ctx.progress);
+    write_metrics_3d(out, rec.frames);
+    write_summary(out, "simulate", ctx.config, figures_3d(settings, rec), rec.failure);
+    return Outcome{rec.failure};
+  };
+}
+
+}  // namespace jellysim::experiments

@@ -1,0 +1,140 @@
+// `jellysim simulate` on a 3D scene (tank.geometry = "3d"; docs/three-d.md "The 3D scene"):
+// scenes/jellyfish-3d.toml on a tiny tank (2.5 bell diameters a side, 16 cells: 6.4 across the
+// bell, the quarter tank solved), the files it writes, the same bytes on one and two threads, and
+// the bad values refused before anything is written.
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../cli_runner.hpp"
+
+namespace cli = jellysim::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScene3d = std::string(JELLYSIM_SOURCE_DIR) + "/scenes/jellyfish-3d.toml";
+/// The tiny tank: 10 cm a side, 16 cells (6.25 mm), the aperture 3 cm up, 5 mm tentacles.
+const std::string kTinyTank = kScene3d +
+                              " --set tank.size=[0.1,0.1,0.1] --set tank.cells=[16,16,16] --set jellyfish.position=[0,0.03]"
+                              " --set jellyfish.tentacle_length=0.005";
+/// ... 8 frames a cycle and one frame (0.18 s, the first half of the contraction).
+const std::string kTiny = kTinyTank + " --set output.frames_per_cycle=8 --duration 0.18";
+
+fs::path fresh(const std::string& name) { return cli::fresh_scratch_dir("jelly3d_" + name); }
+
+std::vector<std::vector<double>> read_rows(const std::string& csv, std::string& header) {
+  std::istringstream text(csv);
+  std::getline(text, header);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(text, line);) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// `jellysim ARGS` is refused: exit 2, the message naming `named`, no output directory.
+void expect_refused(const std::string& args, const std::string& named) {
+  cli::expect_refused(args, named, fresh("refused"));
+}
+
+}  // namespace
+
+TEST(Jellyfish3dCli, SimulateWritesMetricsSummaryAndTheFlowOfEachFrame) {
+  const fs::path dir = fresh("simulate");
+  const cli::CliResult r =
+      cli::run_jellysim("simulate " + kTiny + " --set output.vtk=true --set coupling.threads=1 --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"metrics.csv", "summary.json", "jellyfish.pvd", "frames/field_000000.vti", "frames/field_000001.vti"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  std::string header;
+  const auto rows = read_rows(cli::read_text_file(dir / "metrics.csv"), header);
+  EXPECT_EQ(header, "t,x,y,z,velocity_x,velocity_y,velocity_z,speed,heading_deg,tilt_deg,axis_x,axis_y,axis_z,volume,"
+                    "krylov_iterations");
+  ASSERT_EQ(rows.size(), 2u);  // t = 0 and one frame at 1 / (0.7 · 8) s
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 15u);
+    for (double v : row) EXPECT_TRUE(std::isfinite(v));
+  }
+  EXPECT_NEAR(rows[1][0], 1.0 / 5.6, 1e-12);
+  // The symmetric stroke pushes the bell up its axis (measured: the centroid rises 2.479 mm, at
+  // 25.8 mm/s, the cavity shrinks from 23.00 to 18.75 ml, 0.8154 of it); it stays on the axis and upright.
+  EXPECT_NEAR(rows[1][2] - rows[0][2], 2.479e-3, 0.05e-3);
+  EXPECT_NEAR(rows[1][5], 25.8e-3, 0.5e-3);
+  EXPECT_NEAR(rows[1][13] / rows[0][13], 0.8154, 0.005);
+  EXPECT_NEAR(rows[1][1], 0.0, 1e-12);
+  EXPECT_NEAR(rows[1][3], 0.0, 1e-12);
+  EXPECT_NEAR(rows[1][9], 0.0, 1e-6);
+
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "ok");
+  for (const char* key : {"distance_per_cycle_m", "first_cycle_m", "cycle_displacements_m", "heading_change_deg_per_cycle",
+                          "cycle_heading_changes_deg", "final_heading_deg", "final_tilt_deg", "sideways_m", "grid",
+                          "markers", "steps", "ms_per_step", "ms_per_step_split", "krylov_iterations_per_step",
+                          "estimated_memory_bytes", "config"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_EQ(s["grid"]["symmetry"], "quarter");
+  EXPECT_EQ(s["grid"]["solved_cells"], nlohmann::json::array({8, 16, 8}));
+  EXPECT_NEAR(s["grid"]["cells_across_bell"].get<double>(), 6.4, 1e-12);
+  EXPECT_GT(s["estimated_memory_bytes"].get<double>(), 0.0);
+  fs::remove_all(dir);
+}
+
+// The water's rows and the transfer's slabs on a pool: one and two threads, the same bytes.
+TEST(Determinism, Simulate3dIsTheSameForOneAndTwoThreads) {
+  std::string csv[2];
+  for (int threads : {1, 2}) {
+    const fs::path dir = fresh("threads" + std::to_string(threads));
+    const cli::CliResult r =
+        cli::run_jellysim("simulate " + kTinyTank + " --set output.frames_per_cycle=16 --duration 0.09 --set "
+                          "coupling.threads=" + std::to_string(threads) + " --set output.vtk=false --quiet --out " +
+                          dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    csv[threads - 1] = cli::read_text_file(dir / "metrics.csv");
+    fs::remove_all(dir);
+  }
+  EXPECT_FALSE(csv[0].empty());
+  EXPECT_EQ(csv[0], csv[1]);
+}
+
+// A step that fails (here GMRES held to one iteration) ends the run: the frames so far are written,
+// summary.json says when and where, exit 1.
+TEST(Jellyfish3dCli, AFailedStepKeepsWhatWasRecordedAndSaysWhenAndWhere) {
+  const fs::path dir = fresh("failed");
+  const cli::CliResult r = cli::run_jellysim("simulate " + kTiny + " --set coupling.krylov_max_iterations=1 "
+                                             "--set coupling.threads=1 --quiet --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "failed");
+  const std::string failure = s["failure"];
+  EXPECT_EQ(failure.rfind("simulation diverged at t = ", 0), 0u) << failure;
+  EXPECT_NE(failure.find("(step 1): 3D swimmer: the semi-implicit solve did not converge"), std::string::npos) << failure;
+  std::string header;
+  EXPECT_EQ(read_rows(cli::read_text_file(dir / "metrics.csv"), header).size(), 1u);  // the frame at t = 0
+  fs::remove_all(dir);
+}
+
+TEST(Jellyfish3dCli, BadValuesNameTheFieldAndWriteNothing) {
+  expect_refused("simulate --set tank.cells=[96,192,96]", "tank.cells");          // three cells in 2D
+  expect_refused("simulate --set jellyfish.pacemaker=true", "jellyfish.pacemaker");  // a 3D field in 2D
+  expect_refused("simulate " + kTiny + " --set tank.cells=[16,16]", "tank.cells");  // two cells in 3D
+  expect_refused("simulate " + kTiny + " --set tank.cells=[15,16,16]", "even");     // odd across x = 0
+  expect_refused("simulate " + kTiny + " --set tank.size=[0.1,-0.1,0.1]", "tank.size");
+  expect_refused("simulate " + kTiny + " --set tank.size=[0.1,200,0.1]", "tank.size");
+  expect_refused("simulate " + kTiny + " --set jellyfish.position=[0.01,0.03]", "jellyfish.position");
+  expect_refused("simulate " + kTiny + " --set jellyfish.position=[0,0.09]", "jellyfish.position");  // lid
+  expect_refused("simulate " + kTiny + " --set jellyfish.steering=true", "jellyfish.steering");
+  expect_refused("simulate " + kTiny + " --set tank.convection=donor-cell", "tank.convection");
+  expect_refused("simulate " + kTiny + " --set jellyfish.pacemaker=true --set jellyfish.pacemaker_azimuth_deg=90 "
+                 "--set tank.symmetry=mirror", "tank.symmetry");
+  expect_refused("run " + kTiny, "not yet");
+}
