@@ -3,68 +3,25 @@
 // its quarter (symmetric stroke) or half (pacemaker on the +x side), printing each frame's figures,
 // the swimming summary and the wall-clock split per step:
 //   swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N]
-//          [conduction=M_PER_S] [no-tentacles] [out=DIR]
+//          [conduction=M_PER_S] [no-tentacles]
 // edge: the shell's edge length in fluid cells (default 0.5: Peskin's rule, which the slice's
 // markers follow too); tall: the tank's height in bell diameters (default 5; the aperture starts
 // 1.25 diameters above the floor); conduction: the pacemaker's impulse's speed around the margin
-// (default: the slice's, meridian arc / neural delay); out: the simulated surface rendered into DIR
-// as `jellysim run` renders slices (PNG frames, MP4, .glb, OBJ/PLY, point caches, viewer;
-// render::write_surface_animation_outputs, default [render]).
+// (default: the slice's, meridian arc / neural delay). Pictures of the simulated surface:
+// `jellysim run scenes/jellyfish-3d.toml` (docs/three-d.md).
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
-#include "jellysim/io/output.hpp"
-#include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/swim3d/swimmer_3d.hpp"
 
 namespace s3 = jellysim::swim3d;
-namespace geometry = jellysim::geometry;
-
-namespace {
-
-/// The recorded frames as the renderer's plain data: the surface's vertices, then each rod's nodes.
-geometry::SurfaceFrames surface_frames(const jellysim::shell::ShellBell& bell, const std::vector<s3::Frame3d>& frames) {
-  geometry::SurfaceFrames out;
-  out.thickness_m = bell.spec().slice.thickness_m;
-  for (const auto& t : bell.surface().mesh.triangles)
-    out.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]), static_cast<std::uint32_t>(t[2])});
-  const auto point = [](const s3::Vec3& p) { return geometry::Vec3{p[0], p[1], p[2]}; };
-  for (const s3::Frame3d& f : frames) {
-    out.time_s.push_back(f.time_s);
-    std::vector<geometry::Vec3> surface;
-    for (std::size_t i = 0; i < bell.surface().mesh.vertices.size(); ++i) surface.push_back(point(f.points[i]));
-    std::vector<std::vector<geometry::Vec3>> strands;
-    for (const auto& strand : bell.tentacles()) {
-      strands.emplace_back();
-      for (int i : strand) strands.back().push_back(point(f.points[static_cast<std::size_t>(i)]));
-    }
-    out.surface.push_back(std::move(surface));
-    out.tentacles.push_back(std::move(strands));
-  }
-  return out;
-}
-
-void render(const jellysim::shell::ShellBell& bell, const std::vector<s3::Frame3d>& frames, int frames_per_cycle,
-            const std::string& dir) {
-  jellysim::render::PipelineSettings settings;
-  settings.fps = frames_per_cycle * bell.spec().slice.frequency_hz;
-  settings.viewer_script = jellysim::render::default_viewer_script();
-  const jellysim::io::OutputDir out = jellysim::io::OutputDir::for_run(dir, "swim_3d");
-  const auto written = jellysim::render::write_surface_animation_outputs(surface_frames(bell, frames), settings, out);
-  out.finish_manifest();
-  std::printf("# %zu frames rendered into %s (%zu vertices a frame, %.1f ms a frame)\n", written.frames, dir.c_str(),
-              written.vertices, 1e3 * written.render_seconds_per_frame);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N] [conduction=M_PER_S] [no-tentacles] [out=DIR]\n");
+    std::fprintf(stderr, "usage: swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N] [conduction=M_PER_S] [no-tentacles]\n");
     return 2;
   }
   const int across = std::atoi(argv[1]);
@@ -72,7 +29,6 @@ int main(int argc, char** argv) {
   s3::Swim3dSpec spec;
   double edge_cells = 0.5;
   int tall = 5;
-  std::string out_dir;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "pacemaker") spec.bell.pacemaker = true;
@@ -82,7 +38,6 @@ int main(int argc, char** argv) {
     else if (arg.rfind("edge=", 0) == 0) edge_cells = std::atof(arg.c_str() + 5);
     else if (arg.rfind("tall=", 0) == 0) tall = std::atoi(arg.c_str() + 5);
     else if (arg == "no-tentacles") spec.bell.slice.tentacle_length_m = 0.0, spec.bell.tentacle_count = 0;
-    else if (arg.rfind("out=", 0) == 0) out_dir = arg.substr(4);
     else if (arg.rfind("conduction=", 0) == 0) spec.bell.conduction_speed_m_per_s = std::atof(arg.c_str() + 11);
     else {
       std::fprintf(stderr, "swim_3d: unknown argument '%s'\n", arg.c_str());
@@ -124,7 +79,6 @@ int main(int argc, char** argv) {
     std::printf("# %d steps, %.1f ms per step: transfer %.1f, fluid %.1f, krylov %.1f; %.1f GMRES iterations per step; %.4fx real time\n",
                 t.steps, 1e3 * t.total_s / t.steps, 1e3 * t.transfer_s / t.steps, 1e3 * t.fluid_s / t.steps,
                 1e3 * t.krylov_s / t.steps, static_cast<double>(t.krylov_iterations) / t.steps, swimmer.time_s() / t.total_s);
-    if (!out_dir.empty()) render(swimmer.bell(), frames, spec.frames_per_cycle, out_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "swim_3d: %s\n", e.what());
     return 2;

@@ -136,5 +136,24 @@ TEST(Jellyfish3dCli, BadValuesNameTheFieldAndWriteNothing) {
   expect_refused("simulate " + kTiny + " --set tank.convection=donor-cell", "tank.convection");
   expect_refused("simulate " + kTiny + " --set jellyfish.pacemaker=true --set jellyfish.pacemaker_azimuth_deg=90 "
                  "--set tank.symmetry=mirror", "tank.symmetry");
-  expect_refused("run " + kTiny, "not yet");
+  expect_refused("run " + kTiny + " --set render.loop=true", "render.loop");  // the loop is the slice's
+}
+
+// `jellysim run` on a 3D scene renders the simulated surface itself (no 2D→3D extrapolation): the
+// frames, the .glb with a morph target per frame, the point cache, beside the simulation's files.
+TEST(Jellyfish3dCli, RunRendersTheSimulatedSurface) {
+  const fs::path dir = fresh("run");
+  const cli::CliResult r = cli::run_jellysim("run " + kTiny + " --set render.width=160 --set render.height=120 "
+                                             "--set render.video=false --set coupling.threads=1 --quiet --out " +
+                                             dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"metrics.csv", "summary.json", "frames/frame_0000.png", "frames/frame_0001.png", "jellyfish.glb",
+                        "viewer.html", "caches/jellyfish_1.pc2"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["command"], "run");
+  EXPECT_EQ(s["animation"]["frames"], 2);
+  EXPECT_GT(s["animation"]["vertices_per_frame"].get<double>(), 0.0);
+  fs::remove_all(dir);
 }
