@@ -157,8 +157,9 @@ void Viewer3d::draw_controls() {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "Below real time: %.3fx (3D water)", meter_.sim_rate());
   }
   ImGui::Separator();
-  ImGui::Text("bell: height %.1f mm, heading %.1f deg, tilt %.1f deg", 1e3 * pose.centroid[1], pose.heading_deg,
-              pose.tilt_deg);
+  const auto shown_deg = [](double a) { return std::abs(a) < 0.05 ? 0.0 : a; };  // no "−0.0"
+  ImGui::Text("bell: centroid %.1f mm up", 1e3 * pose.centroid[1]);
+  ImGui::Text("heading %.1f deg, tilt %.1f deg", shown_deg(pose.heading_deg), shown_deg(pose.tilt_deg));
   ImGui::Text("water: %d x %d x %d cells (%s tank)", g.n(0), g.n(1), g.n(2),
               std::string(swim3d::to_string(swim3d::resolved_symmetry(sim_->spec()))).c_str());
   ImGui::Text("%zu markers; %.1f GMRES iterations a step", sim_->markers().size(),
