@@ -29,18 +29,6 @@
 namespace jellysim::experiments {
 namespace {
 
-/// What a run recorded: its frames (the first at t = 0), why it stopped early (empty: it did not)
-/// and what it cost.
-struct Recording3d {
-  std::vector<swim3d::Frame3d> frames;
-  std::vector<std::array<std::uint32_t, 3>> triangles;  ///< the bell's surface (its vertices first in each frame's points)
-  std::vector<std::vector<int>> tentacles;              ///< each rod's points from its root
-  std::string failure;
-  swim3d::Swim3dTimings timings;
-  std::size_t markers = 0;
-  double wall_seconds = 0.0;
-};
-
 /// The flow of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the solved part of
 /// the tank (the quarter or half tank's cells), and the time series jellyfish.pvd.
 class FlowFiles3d {
@@ -99,6 +87,8 @@ std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::strin
   }
 }
 
+}  // namespace
+
 /// Runs the frames, writing the flow of each when asked; progress after every frame.
 Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out,
                    const sim::ProgressCallback& progress) {
@@ -132,6 +122,8 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return rec;
 }
+
+namespace {
 
 /// metrics.csv: one row per frame (tank frame, SI units; docs/three-d.md "The 3D scene").
 void write_metrics_3d(const io::OutputDir& out, const std::vector<swim3d::Frame3d>& frames) {

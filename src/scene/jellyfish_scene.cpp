@@ -10,6 +10,7 @@
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
 #include "jellysim/io/output.hpp"
+#include "jellysim/scene/jellyfish_3d_scene.hpp"
 #include "jellysim/scene/objects.hpp"
 
 namespace jellysim::scene {
@@ -252,7 +253,7 @@ std::vector<Parameter> coupling_and_output_parameters() {
 std::vector<Parameter> shell_parameters() {
   return {
       number("jellyfish.shell_edge", "0.0", "m", Range::closed(0.0, 1.0),
-             "3D only: the shell mesh's edge length, in [diameter / 1000, diameter / 2]; 0: 0.8 of a fluid cell"),
+             "3D only: the shell mesh's edge length, in [diameter / 1000, diameter / 2]; 0: half a fluid cell (Peskin's rule, as the slice's markers)"),
       boolean("jellyfish.pacemaker", "false",
               "3D only: the impulse starts at one point of the margin (the bell turns); false: the margin fires at once"),
       number("jellyfish.pacemaker_azimuth_deg", "0.0", "°", Range::closed(-360.0, 360.0),
@@ -607,5 +608,7 @@ const ParameterTable& jellyfish_scene() {
   static const ParameterTable table = make_jellyfish_scene();
   return table;
 }
+
+std::span<const char* const> fields_of_3d() { return kFieldsOf3d; }
 
 }  // namespace jellysim::scene
