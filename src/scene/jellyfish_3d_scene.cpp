@@ -90,6 +90,7 @@ shell::ShellBellSpec read_shell_bell(const config::Config& c, const Reader& r, d
                      "] m (0: half a fluid cell)");
   b.pacemaker = r.boolean("jellyfish.pacemaker");
   b.pacemaker_azimuth_rad = r.number("jellyfish.pacemaker_azimuth_deg") * kDegree;
+  b.conduction_speed_m_per_s = r.number("jellyfish.conduction_speed");
   b.tentacle_count = b.slice.tentacle_length_m > 0.0 ? static_cast<int>(r.integer("jellyfish.tentacle_count")) : 0;
   return b;
 }

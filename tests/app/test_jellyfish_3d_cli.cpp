@@ -127,6 +127,8 @@ TEST(Jellyfish3dCli, AFailedStepKeepsWhatWasRecordedAndSaysWhenAndWhere) {
 TEST(Jellyfish3dCli, BadValuesNameTheFieldAndWriteNothing) {
   expect_refused("simulate --set tank.cells=[96,192,96]", "tank.cells");          // three cells in 2D
   expect_refused("simulate --set jellyfish.pacemaker=true", "jellyfish.pacemaker");  // a 3D field in 2D
+  expect_refused("simulate --set jellyfish.conduction_speed=0.25", "jellyfish.conduction_speed");
+  expect_refused("simulate " + kTiny + " --set jellyfish.conduction_speed=-1", "jellyfish.conduction_speed");
   expect_refused("simulate " + kTiny + " --set tank.cells=[16,16]", "tank.cells");  // two cells in 3D
   expect_refused("simulate " + kTiny + " --set tank.cells=[15,16,16]", "even");     // odd across x = 0
   expect_refused("simulate " + kTiny + " --set tank.size=[0.1,-0.1,0.1]", "tank.size");
