@@ -185,6 +185,7 @@ void add_cost_figures(nlohmann::ordered_json& j, const scene::Swim3dSettings& s,
   j["estimated_memory_bytes"] = s.estimated_memory_bytes;
 }
 
+/// summary.json's figures (docs/three-d.md, "The 3D scene": the bell, its swimming, the grid, the cost).
 nlohmann::ordered_json figures_3d(const scene::Swim3dSettings& s, const Recording3d& rec) {
   nlohmann::ordered_json j;
   j["units"] = {{"length", "m"}, {"time", "s"}, {"velocity", "m/s"}, {"volume", "m^3"}, {"angle", "deg"}};
