@@ -59,8 +59,21 @@ TEST(Jellyfish3dCli, SimulateWritesMetricsSummaryAndTheFlowOfEachFrame) {
   const cli::CliResult r =
       cli::run_jellysim("simulate " + kTiny + " --set output.vtk=true --set coupling.threads=1 --quiet --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"metrics.csv", "summary.json", "jellyfish.pvd", "frames/field_000000.vti", "frames/field_000001.vti"})
+  for (const char* f : {"metrics.csv", "summary.json", "jellyfish.pvd", "frames/field_000000.vti", "frames/field_000001.vti",
+                        "frames/bell_000000.obj"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
+  // The bell's surface: a vertex and a normal per shell vertex (measured: 163 of the 187 markers,
+  // the other 24 the twelve tentacles' nodes), triangles of those.
+  std::istringstream obj(cli::read_text_file(dir / "frames" / "bell_000001.obj"));
+  int v = 0, vn = 0, f = 0;
+  for (std::string line; std::getline(obj, line);) {
+    v += line.starts_with("v ");
+    vn += line.starts_with("vn ");
+    f += line.starts_with("f ");
+  }
+  EXPECT_EQ(v, 163);
+  EXPECT_EQ(vn, v);
+  EXPECT_GT(f, v);
   std::string header;
   const auto rows = read_rows(cli::read_text_file(dir / "metrics.csv"), header);
   EXPECT_EQ(header, "t,x,y,z,velocity_x,velocity_y,velocity_z,speed,heading_deg,tilt_deg,axis_x,axis_y,axis_z,volume,"
