@@ -2,8 +2,13 @@
 // command line: a tank of free-slip walls four bell diameters wide and deep and five tall, solved on
 // its quarter (symmetric stroke) or half (pacemaker on the +x side), printing each frame's figures,
 // the swimming summary and the wall-clock split per step:
-//   swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F]
-// edge: the shell's edge length in fluid cells (default 0.8).
+//   swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N]
+//          [conduction=M_PER_S] [no-tentacles]
+// edge: the shell's edge length in fluid cells (default 0.5: Peskin's rule, which the slice's
+// markers follow too); tall: the tank's height in bell diameters (default 5; the aperture starts
+// 1.25 diameters above the floor); conduction: the pacemaker's impulse's speed around the margin
+// (default: the slice's, meridian arc / neural delay). Pictures of the simulated surface:
+// `jellysim run scenes/jellyfish-3d.toml` (docs/three-d.md).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,13 +21,14 @@ namespace s3 = jellysim::swim3d;
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F]\n");
+    std::fprintf(stderr, "usage: swim_3d CELLS_ACROSS_BELL CYCLES [pacemaker] [threads=N] [fpc=N] [dt=S] [edge=F] [tall=N] [conduction=M_PER_S] [no-tentacles]\n");
     return 2;
   }
   const int across = std::atoi(argv[1]);
   const int cycles = std::atoi(argv[2]);
   s3::Swim3dSpec spec;
-  double edge_cells = 0.8;
+  double edge_cells = 0.5;
+  int tall = 5;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "pacemaker") spec.bell.pacemaker = true;
@@ -30,18 +36,21 @@ int main(int argc, char** argv) {
     else if (arg.rfind("fpc=", 0) == 0) spec.frames_per_cycle = std::atoi(arg.c_str() + 4);
     else if (arg.rfind("dt=", 0) == 0) spec.max_time_step_s = std::atof(arg.c_str() + 3);
     else if (arg.rfind("edge=", 0) == 0) edge_cells = std::atof(arg.c_str() + 5);
+    else if (arg.rfind("tall=", 0) == 0) tall = std::atoi(arg.c_str() + 5);
+    else if (arg == "no-tentacles") spec.bell.slice.tentacle_length_m = 0.0, spec.bell.tentacle_count = 0;
+    else if (arg.rfind("conduction=", 0) == 0) spec.bell.conduction_speed_m_per_s = std::atof(arg.c_str() + 11);
     else {
       std::fprintf(stderr, "swim_3d: unknown argument '%s'\n", arg.c_str());
       return 2;
     }
   }
-  if (across < 4 || across > 256 || cycles < 1 || cycles > 100) {
-    std::fprintf(stderr, "swim_3d: CELLS_ACROSS_BELL in [4, 256], CYCLES in [1, 100]\n");
+  if (across < 4 || across > 256 || cycles < 1 || cycles > 100 || tall < 3 || tall > 50) {
+    std::fprintf(stderr, "swim_3d: CELLS_ACROSS_BELL in [4, 256], CYCLES in [1, 100], tall in [3, 50]\n");
     return 2;
   }
   const double D = spec.bell.slice.diameter_m, h = D / across;
-  spec.tank_size_m = {4 * D, 5 * D, 4 * D};
-  spec.cells = {4 * across, 5 * across, 4 * across};
+  spec.tank_size_m = {4 * D, tall * D, 4 * D};
+  spec.cells = {4 * across, tall * across, 4 * across};
   spec.aperture_height_m = 1.25 * D;
   spec.bell.target_edge_m = edge_cells * h;
   try {

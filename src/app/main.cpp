@@ -18,6 +18,7 @@
 #include "jellysim/scene/resolve.hpp"
 
 #include "jellysim/viewer/viewer.hpp"
+#include "jellysim/viewer/viewer_3d.hpp"
 #ifdef JELLYSIM_MPI
 #include "mpi_backend.hpp"
 #endif
@@ -464,7 +465,6 @@ int run_view(ViewCommand& v) {
   if (!v.scene_path.empty()) sources.scene_file = js::config::Config::load(v.scene_path);
   const js::config::Config config =
       js::scene::resolve_config(js::scene::builtin_jellyfish_scene(), sources, "the jellyfish scene");
-  const js::jellyfish::SwimSettings settings = js::scene::read_swim_settings(config);
   const std::string name = v.scene_path.empty() ? "built-in jellyfish" : v.scene_path;
   auto& o = v.options;
   o.scene_name = name;
@@ -480,7 +480,8 @@ int run_view(ViewCommand& v) {
     o.script_text += (o.script_text.empty() ? "" : "\n") + v.inject;
     o.script_source = v.script_path.empty() ? "--inject" : "--script/--inject";
   }
-  return js::viewer::run_viewer(settings, o);
+  if (js::scene::is_3d_scene(config)) return js::viewer::run_viewer_3d(js::scene::read_swim3d_settings(config), o);
+  return js::viewer::run_viewer(js::scene::read_swim_settings(config), o);
 }
 
 /// Options of `jellysim batch`.

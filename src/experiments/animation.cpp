@@ -12,6 +12,7 @@
 #include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/scene/jellyfish_3d_scene.hpp"
 #include "jellysim/scene/render_settings.hpp"
+#include "jellyfish_3d.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -81,9 +82,7 @@ std::string cut_animation_loop(const jellyfish::LoopSettings& loop, const jellyf
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_animation(const Context& ctx) {
-  if (scene::is_3d_scene(ctx.config))
-    throw InputError("`jellysim run` on a 3D scene (tank.geometry = \"3d\"): not yet: rendering the 3D surface is "
-                     "in progress; `jellysim simulate` runs it (docs/three-d.md, \"The 3D scene\")");
+  if (scene::is_3d_scene(ctx.config)) return prepare_animation_3d(ctx);  // the simulated surface, rendered
   jellyfish::SwimSettings settings = read_swim_settings(ctx.config);
   SwimOutputOptions options = read_output_options(ctx.config);
   if (settings.school.empty())

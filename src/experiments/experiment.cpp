@@ -43,6 +43,7 @@ Experiment hoover_miller_experiment();
 Experiment axisymmetric_vs_planar_experiment();
 Experiment convergence_experiment();
 Experiment resonance_experiment();
+Experiment three_d_vs_axisymmetric_experiment();
 
 const std::vector<Experiment>& all_experiments() {
   static const std::vector<Experiment> list = {swinging_bar_experiment(), integrator_order_experiment(),
@@ -55,7 +56,8 @@ const std::vector<Experiment>& all_experiments() {
                                                mosquito_larva_experiment(), integrator_cost_experiment(), stages_experiment(),
                                                steering_experiment(), obstacle_flow_experiment(),
                                                hoover_miller_experiment(), axisymmetric_vs_planar_experiment(),
-                                               convergence_experiment(), resonance_experiment()};
+                                               convergence_experiment(), resonance_experiment(),
+                                               three_d_vs_axisymmetric_experiment()};
   return list;
 }
 

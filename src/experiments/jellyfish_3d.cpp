@@ -10,6 +10,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -23,20 +24,12 @@
 #include "jellysim/core/memory.hpp"
 #include "jellysim/io/mesh_files.hpp"
 #include "jellysim/io/vtk_fields.hpp"
+#include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/scene/jellyfish_3d_scene.hpp"
+#include "jellysim/scene/render_settings.hpp"
 
 namespace jellysim::experiments {
 namespace {
-
-/// What a run recorded: its frames (the first at t = 0), why it stopped early (empty: it did not)
-/// and what it cost.
-struct Recording3d {
-  std::vector<swim3d::Frame3d> frames;
-  std::string failure;
-  swim3d::Swim3dTimings timings;
-  std::size_t markers = 0;
-  double wall_seconds = 0.0;
-};
 
 /// The bell's surface at the markers' positions (the shell's vertices come first), with
 /// area-weighted vertex normals, as one mesh part "bell" for the OBJ writer.
@@ -122,7 +115,9 @@ std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::strin
   }
 }
 
-/// Runs the frames, writing the flow of each when asked; progress after every frame.
+}  // namespace
+
+/// Runs the frames, writing the flow and the bell of each when asked; progress after every frame.
 Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out,
                    const sim::ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -134,6 +129,10 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
     return std::make_unique<swim3d::Swimmer3d>(settings.spec);
   }();
   rec.markers = swimmer->markers().size();
+  for (const auto& t : swimmer->bell().surface().mesh.triangles)
+    rec.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
+                             static_cast<std::uint32_t>(t[2])});
+  rec.tentacles = swimmer->bell().tentacles();
   std::optional<FrameFiles3d> files;
   if (settings.vtk) files.emplace(out);
   const auto record = [&](swim3d::Frame3d f) {
@@ -151,6 +150,8 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return rec;
 }
+
+namespace {
 
 /// metrics.csv: one row per frame (tank frame, SI units; docs/three-d.md "The 3D scene").
 void write_metrics_3d(const io::OutputDir& out, const std::vector<swim3d::Frame3d>& frames) {
@@ -239,7 +240,70 @@ void print_estimate(const scene::Swim3dSettings& s) {
             << core::format_bytes(s.estimated_memory_bytes) << "; " << s.frames << " frames\n";
 }
 
+/// The recorded frames as the renderer's plain data (the surface's vertices, then each rod's nodes):
+/// the simulated surface itself, no 2D→3D extrapolation (docs/rendering.md, "The simulated 3D surface").
+geometry::SurfaceFrames surface_frames(const Recording3d& rec, double thickness_m) {
+  geometry::SurfaceFrames out;
+  out.thickness_m = thickness_m;
+  out.triangles = rec.triangles;
+  std::size_t vertices = 0;
+  for (const auto& t : rec.triangles) vertices = std::max<std::size_t>(vertices, std::max({t[0], t[1], t[2]}) + 1);
+  const auto point = [](const swim3d::Vec3& p) { return geometry::Vec3{p[0], p[1], p[2]}; };
+  for (const swim3d::Frame3d& f : rec.frames) {
+    out.time_s.push_back(f.time_s);
+    std::vector<geometry::Vec3> surface(vertices);
+    for (std::size_t i = 0; i < vertices; ++i) surface[i] = point(f.points[i]);
+    std::vector<std::vector<geometry::Vec3>> strands;
+    for (const std::vector<int>& strand : rec.tentacles) {
+      strands.emplace_back();
+      for (int i : strand) strands.back().push_back(point(f.points[static_cast<std::size_t>(i)]));
+    }
+    out.surface.push_back(std::move(surface));
+    out.tentacles.push_back(std::move(strands));
+  }
+  return out;
+}
+
+/// The render settings of `jellysim run` for the 3D scene: the video plays in real time, the files
+/// carry the renderer's look; the slice-only features are refused.
+render::PipelineSettings read_pipeline_3d(const Context& ctx, const scene::Swim3dSettings& s) {
+  if (scene::read_loop_settings(ctx.config).enabled)
+    throw InputError("render.loop: the seamless loop is not made for the 3D scene (tank.geometry = \"3d\") yet");
+  render::PipelineSettings p = scene::read_render_settings(ctx.config);
+  p.fps = s.spec.frames_per_cycle * s.spec.bell.slice.frequency_hz;
+  p.look = render::export_look(p.style);
+  return p;
+}
+
 }  // namespace
+
+std::function<Outcome(const io::OutputDir&)> prepare_animation_3d(const Context& ctx) {
+  const scene::Swim3dSettings settings = scene::read_swim3d_settings(ctx.config);
+  if (ctx.checkpoints)
+    throw InputError("--checkpoint-every / --resume: the 3D scene (tank.geometry = \"3d\") has no checkpoints yet");
+  const render::PipelineSettings pipeline = read_pipeline_3d(ctx, settings);
+  if (ctx.progress) print_estimate(settings);
+  return [settings, pipeline, ctx](const io::OutputDir& out) {
+    const Recording3d rec = run_3d(settings, out, ctx.progress);
+    write_metrics_3d(out, rec.frames);
+    nlohmann::ordered_json figures = figures_3d(settings, rec);
+    std::string failure = rec.failure;
+    if (rec.frames.size() > 1) {  // a picture needs two frames of the surface at least
+      if (ctx.render_progress) ctx.render_progress(0, rec.frames.size());
+      const render::AnimationOutputs anim = render::write_surface_animation_outputs(
+          surface_frames(rec, settings.spec.bell.slice.thickness_m), pipeline, out,
+          [&ctx](std::size_t done, std::size_t total) {
+            if (ctx.render_progress) ctx.render_progress(done, total);
+          });
+      figures["animation"] = anim.figures();
+      if (failure.empty() && core::interrupt_signal() != 0 && anim.frames < rec.frames.size())
+        failure = "interrupted by " + core::signal_name(core::interrupt_signal()) + " while rendering, after " +
+                  std::to_string(anim.frames) + " of " + std::to_string(rec.frames.size()) + " frames";
+    }
+    write_summary(out, "run", ctx.config, figures, failure);
+    return Outcome{failure};
+  };
+}
 
 std::function<Outcome(const io::OutputDir&)> prepare_jellyfish_3d(const Context& ctx) {
   const scene::Swim3dSettings settings = scene::read_swim3d_settings(ctx.config);

@@ -356,7 +356,8 @@ void build_strands(const RenderingSlice& slice, const GeometrySettings& s, const
   }
 }
 
-/// A tube around every strand, after the umbrella in the mesh (part "tentacles").
+}  // namespace
+
 void append_tentacle_tubes(const std::vector<std::vector<Vec3>>& lines, const GeometrySettings& s, Mesh& mesh) {
   const AngleTable tube_angles(s.tube_sides);
   const auto S = static_cast<std::size_t>(s.tube_sides);
@@ -379,7 +380,12 @@ void append_tentacle_tubes(const std::vector<std::vector<Vec3>>& lines, const Ge
                         static_cast<std::uint32_t>(indices - first_index)});
 }
 
-}  // namespace
+std::uint32_t umbrella_vertex_count(const FrameGeometry& g) {
+  const MeshPart* part = g.mesh.part("umbrella");
+  if (part == nullptr || part->index_count == 0) return 0;
+  const VertexRange r = vertex_range(g.mesh, *part);
+  return r.first + r.count;
+}
 
 void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& out) const {
   const GeometrySettings& s = settings_;
@@ -387,6 +393,7 @@ void GeometryBuilder::build(const jellyfish::SliceFrame& frame, FrameGeometry& o
   const std::vector<Row> rows = umbrella_rows(slice);
 
   out.time_s = frame.time_s;
+  out.umbrella_uv.clear();  // the ring layout gives the texture coordinates
   UmbrellaLayout& L = out.umbrella;
   L = {static_cast<int>(rows.size()), s.disc_points, (static_cast<int>(rows.size()) - 2) / 2};
   std::vector<Vec3>& x = out.mesh.positions;

@@ -1,6 +1,8 @@
 #include "jellysim/geometry/synthetic_bell.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 
@@ -81,6 +83,55 @@ jellyfish::SliceFrame synthetic_bell(double diameter_m, double height_m, double 
   spec.thickness_m = 0.054 * height_m;
   spec.tentacle_length_m = 0.5 * height_m;
   return synthetic_bell(spec);
+}
+
+namespace {
+
+/// The point at meridian radius r (from the axis x = axis_x) and height y, turned by σ about the axis.
+Vec3 revolved(Vec2 p, double axis_x, double sigma) {
+  const double r = p.x - axis_x;
+  return {axis_x + r * std::cos(sigma), p.y, -r * std::sin(sigma)};
+}
+
+/// The apex fan and the quads between rings (ring m above ring m + 1), normals away from the cavity.
+std::vector<std::array<std::uint32_t, 3>> revolved_triangles(int rings, int J) {
+  const auto at = [J](int ring, int j) { return static_cast<std::uint32_t>(1 + (ring - 1) * J + (j % J)); };
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (int j = 0; j < J; ++j) triangles.push_back({0u, at(1, j), at(1, j + 1)});
+  for (int m = 1; m < rings; ++m)
+    for (int j = 0; j < J; ++j) {
+      triangles.push_back({at(m, j), at(m + 1, j), at(m + 1, j + 1)});
+      triangles.push_back({at(m, j), at(m + 1, j + 1), at(m, j + 1)});
+    }
+  return triangles;
+}
+
+}  // namespace
+
+SurfaceFrames revolved_synthetic_bell(const std::vector<SyntheticBell>& specs, int ring_points, int strands) {
+  require(!specs.empty(), "no frames asked for");
+  require(ring_points >= 3, "ring_points must be ≥ 3");
+  require(strands >= 0, "strands must be ≥ 0");
+  SurfaceFrames out;
+  out.thickness_m = specs.front().thickness_m;
+  for (const SyntheticBell& spec : specs) {
+    const jellyfish::SliceFrame slice = synthetic_bell(spec);
+    const std::size_t apex = slice.umbrella.size() / 2;
+    const double axis_x = spec.aperture_centre_m.x;
+    std::vector<Vec3> surface{revolved(slice.umbrella[apex], axis_x, 0.0)};
+    for (std::size_t m = apex + 1; m < slice.umbrella.size(); ++m)
+      for (int j = 0; j < ring_points; ++j)
+        surface.push_back(revolved(slice.umbrella[m], axis_x, 2.0 * std::numbers::pi * j / ring_points));
+    std::vector<std::vector<Vec3>> tentacles(slice.tentacles.empty() ? 0 : static_cast<std::size_t>(strands));
+    for (std::size_t t = 0; t < tentacles.size(); ++t)
+      for (Vec2 p : slice.tentacles.back())
+        tentacles[t].push_back(revolved(p, axis_x, 2.0 * std::numbers::pi * static_cast<double>(t) / strands));
+    out.time_s.push_back(spec.time_s);
+    out.surface.push_back(std::move(surface));
+    out.tentacles.push_back(std::move(tentacles));
+  }
+  out.triangles = revolved_triangles(static_cast<int>(specs.front().umbrella_points / 2), ring_points);
+  return out;
 }
 
 }  // namespace jellysim::geometry

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <string>
 
 #include "jellysim/core/errors.hpp"
 
@@ -25,15 +26,19 @@ void umbrella_coordinates(const UmbrellaLayout& L, std::vector<TexCoord>& uv) {
 
 std::vector<TexCoord> texture_coordinates(const FrameGeometry& g) {
   std::vector<TexCoord> uv(g.mesh.vertex_count());
-  const UmbrellaLayout& L = g.umbrella;
-  umbrella_coordinates(L, uv);
+  const std::uint32_t umbrella = umbrella_vertex_count(g);
+  if (g.umbrella_uv.empty()) umbrella_coordinates(g.umbrella, uv);
+  else if (g.umbrella_uv.size() == umbrella) std::copy(g.umbrella_uv.begin(), g.umbrella_uv.end(), uv.begin());
+  else throw InputError("texture coordinates: the umbrella has " + std::to_string(umbrella) + " vertices but " +
+                        std::to_string(g.umbrella_uv.size()) + " coordinates");
   std::size_t samples = 0;
   for (const auto& line : g.tentacle_lines) samples += line.size();
-  const std::size_t tube_vertices = uv.size() - L.vertex_count();
+  const std::size_t tube_vertices = uv.size() - umbrella;
+  if (samples == 0 && tube_vertices == 0) return uv;  // a bell without tentacles
   if (samples == 0 || tube_vertices % samples != 0)
     throw InputError("texture coordinates: the tentacle tubes do not match their lines");
   const std::size_t sides = tube_vertices / samples;
-  std::size_t at = L.vertex_count();
+  std::size_t at = umbrella;
   for (const auto& line : g.tentacle_lines)
     for (std::size_t m = 0; m < line.size(); ++m)
       for (std::size_t s = 0; s < sides; ++s)

@@ -1,5 +1,6 @@
 #include "jellysim/ib3d/transfer_3d.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace jellysim::ib3d {
@@ -66,10 +67,11 @@ Stencil3d Transfer3d::stencil(int c, const Vec3& x) const {
 }
 
 void Transfer3d::interpolate(const fluid3d::Velocity3d& vel, std::span<const Vec3> x, std::span<Vec3> out) {
+  ensure_stencils(x);
   auto body = [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t m = begin; m < end; ++m)
       for (int c = 0; c < 3; ++c) {
-        const Stencil3d s = stencil(c, x[m]);
+        const Stencil3d& s = stencils_[3 * m + static_cast<std::size_t>(c)];
         const fluid3d::Field3d& q = vel.c[static_cast<std::size_t>(c)];
         double sum = 0.0;
         for (int kz = 0; kz < s.count[2]; ++kz)
@@ -83,6 +85,15 @@ void Transfer3d::interpolate(const fluid3d::Velocity3d& vel, std::span<const Vec
   };
   if (pool_) pool_->run(x.size(), body);
   else body(0, x.size(), 0);
+}
+
+// The semi-implicit step spreads and interpolates many times at the same marker positions (each
+// Krylov iteration): the stencils are kept with the positions they were made for and remade only
+// when the positions differ (compared value by value, so the results are those of fresh stencils).
+void Transfer3d::ensure_stencils(std::span<const Vec3> x) {
+  if (stencil_positions_.size() == x.size() && std::equal(x.begin(), x.end(), stencil_positions_.begin())) return;
+  compute_stencils(x);
+  stencil_positions_.assign(x.begin(), x.end());
 }
 
 void Transfer3d::compute_stencils(std::span<const Vec3> x) {
@@ -118,7 +129,7 @@ void Transfer3d::spread_slab(std::span<const Vec3> force_n, double scale, int k_
 
 void Transfer3d::spread(std::span<const Vec3> x, std::span<const Vec3> force_n, double density_kg_per_m3,
                         fluid3d::Velocity3d& acc) {
-  compute_stencils(x);
+  ensure_stencils(x);
   const double scale = 1.0 / (density_kg_per_m3 * grid_.cell_volume());  // force density / ρ
   const int lowest = -fluid3d::Grid3d::ghosts;
   const auto planes = static_cast<std::size_t>(grid_.n(2) + 1 + 2 * fluid3d::Grid3d::ghosts);

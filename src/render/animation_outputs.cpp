@@ -41,10 +41,10 @@ std::string frame_name(std::size_t k, const char* extension) {
   return buf;
 }
 
-/// The umbrella's vertex range (part "umbrella" uses vertices from 0) — the camera frames it.
+/// The middle of the umbrella's box (part "umbrella" uses vertices from 0) — the camera frames it.
 Vec3 umbrella_centre(const geometry::FrameGeometry& g) {
   Vec3 lo = g.mesh.positions[0], hi = lo;
-  for (std::uint32_t v = 0; v < g.umbrella.vertex_count(); ++v) {
+  for (std::uint32_t v = 0, n = geometry::umbrella_vertex_count(g); v < n; ++v) {
     const Vec3 p = g.mesh.positions[v];
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
@@ -116,7 +116,11 @@ double camera_distance_for(const PipelineSettings& s, double extent_m) {
 /// sphere fits the picture's height. The bell then moves across the picture as it swims.
 Camera fixed_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& s,
                     const geometry::Mesh& first) {
-  const auto [lo, hi] = path_bounds(school);
+  return fixed_camera(path_bounds(school), s, first);
+}
+
+Camera fixed_camera(const std::array<Vec3, 2>& path_box, const PipelineSettings& s, const geometry::Mesh& first) {
+  const auto [lo, hi] = path_box;
   const geometry::Bounds b = geometry::bounds(first);
   const Vec3 size = b.max - b.min;
   const double extent = std::max({size.x, size.y, size.z});
@@ -501,6 +505,86 @@ std::vector<geometry::GeometryBuilder> geometry_builders(const School& school, c
   return builders;
 }
 
+/// Where the shared writer's jellyfish come from: recorded slices extrapolated to 3D (with the
+/// scene's obstacles and marine snow), or a simulated 3D surface. Everything after the geometry
+/// (camera, pixels, video, meshes, caches, .glb, viewer) is one path for both (AnimationWriter).
+class JellyfishFrames {
+ public:
+  virtual ~JellyfishFrames() = default;
+  virtual std::size_t frame_count() const = 0;
+  virtual std::size_t jellyfish_count() const = 0;
+  /// Frame k's geometry of each jellyfish into parts[j] (reused buffers).
+  virtual void build(std::size_t k, std::vector<geometry::FrameGeometry>& parts) = 0;
+  /// What else frame k shows (obstacles, marine snow), appended to its merged mesh.
+  virtual void add_surroundings(std::size_t k, geometry::Mesh& mesh) const = 0;
+  /// The box that holds every jellyfish in every frame: what the fixed camera frames.
+  virtual std::array<Vec3, 2> path_box() const = 0;
+  /// The bell wall's thickness (m): the tissue's in the renderer and the exported look.
+  virtual double tissue_thickness_m() const = 0;
+  virtual std::size_t marine_snow_specks() const = 0;
+};
+
+/// The slice pipeline's jellyfish: each jellyfish's slices through its own GeometryBuilder (§7.2–7.4).
+class SliceSchool final : public JellyfishFrames {
+ public:
+  SliceSchool(const School& school, const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
+              const ObstacleFrames& obstacles, const std::vector<std::vector<Vec2>>& tracers)
+      : school_(school),
+        obstacles_(obstacles),
+        tracers_(tracers),
+        prisms_(obstacle_prisms(obstacles, s)),
+        snow_(marine_snow(school, tracers, s)),
+        builders_(geometry_builders(school, seeds, s)) {}
+
+  std::size_t frame_count() const override { return school_.front().size(); }
+  std::size_t jellyfish_count() const override { return school_.size(); }
+  void build(std::size_t k, std::vector<geometry::FrameGeometry>& parts) override {
+    for (std::size_t j = 0; j < school_.size(); ++j) builders_[j].build(school_[j][k], parts[j]);
+  }
+  void add_surroundings(std::size_t k, geometry::Mesh& mesh) const override {
+    if (prisms_) {
+      try {
+        prisms_->append(obstacles_[k], mesh);
+      } catch (const std::invalid_argument& e) {
+        throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
+      }
+    }
+    if (snow_) snow_->append(tracers_[k], mesh);
+  }
+  std::array<Vec3, 2> path_box() const override { return path_bounds(school_); }
+  double tissue_thickness_m() const override { return school_.front().front().thickness_m; }
+  std::size_t marine_snow_specks() const override { return snow_ ? snow_->count() : 0; }
+
+ private:
+  const School& school_;
+  const ObstacleFrames& obstacles_;
+  const std::vector<std::vector<Vec2>>& tracers_;
+  std::unique_ptr<geometry::ObstaclePrisms> prisms_;
+  std::unique_ptr<geometry::MarineSnow> snow_;
+  std::vector<geometry::GeometryBuilder> builders_;
+};
+
+/// A simulated bell (the 3D swimmer): its surface drawn as simulated (geometry/surface_geometry.hpp),
+/// no extrapolation and no noise. Slice-only things are not drawn: obstacles and marine snow come
+/// from the 2D tank's markers and tracers, which the 3D swimmer does not record.
+class SimulatedBell final : public JellyfishFrames {
+ public:
+  SimulatedBell(const geometry::SurfaceFrames& frames, const PipelineSettings& s)
+      : frames_(frames), builder_(frames, s.geometry) {}
+
+  std::size_t frame_count() const override { return builder_.frame_count(); }
+  std::size_t jellyfish_count() const override { return 1; }
+  void build(std::size_t k, std::vector<geometry::FrameGeometry>& parts) override { builder_.build(k, parts.front()); }
+  void add_surroundings(std::size_t, geometry::Mesh&) const override {}
+  std::array<Vec3, 2> path_box() const override { return geometry::surface_path_bounds(frames_); }
+  double tissue_thickness_m() const override { return frames_.thickness_m; }
+  std::size_t marine_snow_specks() const override { return 0; }
+
+ private:
+  const geometry::SurfaceFrames& frames_;
+  geometry::SurfaceGeometryBuilder builder_;
+};
+
 /// What writes each frame's pixels and meshes: the renderer, the video's file then its encoder
 /// (stopped first when the run fails: the file is removed), and folders only for what is written
 /// (an empty folder would be a surprise).
@@ -534,23 +618,17 @@ struct Cameras {
 /// animation's own files).
 class AnimationWriter {
  public:
-  AnimationWriter(const School& school, const std::vector<std::uint64_t>& seeds, const PipelineSettings& s,
-                  const io::OutputDir& out, const ObstacleFrames& obstacles, const std::vector<std::vector<Vec2>>& tracers)
-      : school_(school),
+  AnimationWriter(JellyfishFrames& source, const PipelineSettings& s, const io::OutputDir& out)
+      : source_(source),
         s_(s),
         out_(out),
-        obstacles_(obstacles),
-        tracers_(tracers),
-        prisms_(obstacle_prisms(obstacles, s)),
-        snow_(marine_snow(school, tracers, s)),
-        builders_(geometry_builders(school, seeds, s)),
         writers_(s, out),
-        parts_(school.size()),
-        caches_(school.size()),
+        parts_(source.jellyfish_count()),
+        caches_(source.jellyfish_count()),
         caching_(s.pc2 || s.mdd || s.usda || s.glb) {
-    result_.marine_snow_specks = snow_ ? snow_->count() : 0;
+    result_.marine_snow_specks = source.marine_snow_specks();
     style_ = s.style;
-    style_.tissue_thickness_m = school.front().front().thickness_m;
+    style_.tissue_thickness_m = source.tissue_thickness_m();
     result_.renderer = writers_.renderer ? writers_.renderer->renderer_name() : "";
   }
 
@@ -558,20 +636,20 @@ class AnimationWriter {
     auto t0 = Clock::now();
     geometry::FrameGeometry g = jellyfish_geometry(k);
     if (!cameras_.follow) cameras_.follow = std::make_unique<FollowCamera>(s_, g.mesh);
-    if (s_.camera == "fixed" && !cameras_.fixed) cameras_.fixed = fixed_camera(school_, s_, g.mesh);
-    add_surroundings(k, g.mesh);
+    if (s_.camera == "fixed" && !cameras_.fixed) cameras_.fixed = fixed_camera(source_.path_box(), s_, g.mesh);
+    source_.add_surroundings(k, g.mesh);
     if (caching_) caches_.add(parts_, g.mesh);
     geometry_s_ += seconds_since(t0);
     if (k > 0 && !geometry::same_topology(animation_.frames.front(), g.mesh))
-      throw InputError("slice frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
+      throw InputError("frame " + std::to_string(k) + " changes the mesh topology (point counts differ)");
     const Camera view = next_view();
     result_.cameras.push_back(view);
     if (k == 0 && s_.obj) frame_uv_ = merged_texture_coordinates(parts_);
     if (writers_.pixels) render_frame(k, g.mesh, view);
-    write_frame_meshes(k, g.mesh);
+    write_frame_meshes(k, g.time_s, g.mesh);
     result_.vertices = g.mesh.vertex_count();
     result_.triangles = g.mesh.triangle_count();
-    animation_.times_s.push_back(school_.front()[k].time_s);
+    animation_.times_s.push_back(g.time_s);
     if (k == 0) animation_.frames.push_back(std::move(g.mesh));  // the topology every frame must keep
   }
 
@@ -593,24 +671,12 @@ class AnimationWriter {
  private:
   /// Frame k's jellyfish (several merged into one mesh).
   geometry::FrameGeometry jellyfish_geometry(std::size_t k) {
-    for (std::size_t j = 0; j < school_.size(); ++j) builders_[j].build(school_[j][k], parts_[j]);
-    if (school_.size() == 1) return parts_.front();
+    source_.build(k, parts_);
+    if (parts_.size() == 1) return parts_.front();
     geometry::FrameGeometry g;
     g.time_s = parts_.front().time_s;
     merge_meshes(parts_, g.mesh);
     return g;
-  }
-
-  /// The obstacles and the marine snow around the jellyfish at frame k.
-  void add_surroundings(std::size_t k, geometry::Mesh& mesh) {
-    if (prisms_) {
-      try {
-        prisms_->append(obstacles_[k], mesh);
-      } catch (const std::invalid_argument& e) {
-        throw InputError("frame " + std::to_string(k) + ": cannot draw the obstacles: " + e.what());
-      }
-    }
-    if (snow_) snow_->append(tracers_[k], mesh);
   }
 
   /// The camera of this frame (the follow camera moves every frame, also when the fixed one is
@@ -655,9 +721,8 @@ class AnimationWriter {
     if (writers_.video) writers_.video->add(image_);
   }
 
-  void write_frame_meshes(std::size_t k, const geometry::Mesh& mesh) {
-    const std::string comment =
-        "jellysim frame " + std::to_string(k) + " t = " + io::format_double(school_.front()[k].time_s) + " s";
+  void write_frame_meshes(std::size_t k, double time_s, const geometry::Mesh& mesh) {
+    const std::string comment = "jellysim frame " + std::to_string(k) + " t = " + io::format_double(time_s) + " s";
     if (s_.obj) {
       writers_.mesh_dir->write_text(frame_name(k, "obj"), io::obj_text(mesh, comment, "", frame_uv_));
       result_.files.push_back("meshes/" + frame_name(k, "obj"));
@@ -700,7 +765,7 @@ class AnimationWriter {
   /// The settings' look, the tissue thickness from the first slice unless set.
   io::ExportLook look() const {
     io::ExportLook look = s_.look;
-    if (!(look.tissue_thickness_m > 0.0)) look.tissue_thickness_m = school_.front().front().thickness_m;
+    if (!(look.tissue_thickness_m > 0.0)) look.tissue_thickness_m = source_.tissue_thickness_m();
     return look;
   }
 
@@ -715,14 +780,9 @@ class AnimationWriter {
     return c;
   }
 
-  const School& school_;
+  JellyfishFrames& source_;
   const PipelineSettings& s_;
   const io::OutputDir& out_;
-  const ObstacleFrames& obstacles_;
-  const std::vector<std::vector<Vec2>>& tracers_;
-  std::unique_ptr<geometry::ObstaclePrisms> prisms_;
-  std::unique_ptr<geometry::MarineSnow> snow_;
-  std::vector<geometry::GeometryBuilder> builders_;
   FrameWriters writers_;
   AnimationOutputs result_;
   geometry::Animation animation_;
@@ -743,15 +803,12 @@ class AnimationWriter {
   bool caching_;
 };
 
-}  // namespace
-
-AnimationOutputs write_animation_outputs(const School& school, const std::vector<std::uint64_t>& seeds,
-                                         const PipelineSettings& s, const io::OutputDir& out,
-                                         const FrameProgress& progress, const ObstacleFrames& obstacles,
-                                         const std::vector<std::vector<Vec2>>& tracers) {
-  check_recorded_frames(school, seeds, obstacles);
-  AnimationWriter writer(school, seeds, s, out, obstacles, tracers);
-  const std::size_t frames = school.front().size();
+/// The one path from a source's geometry to the files: every frame through the writer, then the
+/// animation's own files.
+AnimationOutputs write_frames(JellyfishFrames& source, const PipelineSettings& s, const io::OutputDir& out,
+                              const FrameProgress& progress) {
+  AnimationWriter writer(source, s, out);
+  const std::size_t frames = source.frame_count();
   std::size_t rendered = 0;
   for (std::size_t k = 0; k < frames; ++k, ++rendered) {
     if (k > 0 && core::interrupt_signal() != 0) break;  // SIGINT/SIGTERM: keep the frames so far
@@ -759,6 +816,25 @@ AnimationOutputs write_animation_outputs(const School& school, const std::vector
     if (progress) progress(k + 1, frames);
   }
   return writer.finish(rendered);
+}
+
+}  // namespace
+
+AnimationOutputs write_animation_outputs(const School& school, const std::vector<std::uint64_t>& seeds,
+                                         const PipelineSettings& s, const io::OutputDir& out,
+                                         const FrameProgress& progress, const ObstacleFrames& obstacles,
+                                         const std::vector<std::vector<Vec2>>& tracers) {
+  check_recorded_frames(school, seeds, obstacles);
+  SliceSchool source(school, seeds, s, obstacles, tracers);
+  return write_frames(source, s, out, progress);
+}
+
+AnimationOutputs write_surface_animation_outputs(const geometry::SurfaceFrames& frames, const PipelineSettings& s,
+                                                 const io::OutputDir& out, const FrameProgress& progress) {
+  // The loop search (render.loop) lives with the slice runs (experiments/animation.cpp) and is not
+  // done here; a loop_travel_m in the settings closes the .glb's loop as for slices.
+  SimulatedBell source(frames, s);
+  return write_frames(source, s, out, progress);
 }
 
 // ---- Figure 8.19 ------------------------------------------------------------------------------

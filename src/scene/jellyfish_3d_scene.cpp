@@ -81,15 +81,16 @@ shell::ShellBellSpec read_shell_bell(const config::Config& c, const Reader& r, d
   shell::ShellBellSpec b;
   b.slice = read_jellyfish_body(c);
   const double edge = r.number("jellyfish.shell_edge");
-  b.target_edge_m = edge > 0.0 ? edge : 0.8 * cell_m;
+  b.target_edge_m = edge > 0.0 ? edge : 0.5 * cell_m;  // Peskin's rule, as the slice's markers
   const double d = b.slice.diameter_m;
   if (!(b.target_edge_m >= 1e-3 * d && b.target_edge_m <= 0.5 * d))
     throw InputError("field 'jellyfish.shell_edge' = " + config::format_number(edge) + " gives an edge of " +
                      config::format_number(b.target_edge_m) + " m: it must be in [diameter / 1000, diameter / 2] = [" +
                      config::format_number(1e-3 * d) + ", " + config::format_number(0.5 * d) +
-                     "] m (0: 0.8 of a fluid cell)");
+                     "] m (0: half a fluid cell)");
   b.pacemaker = r.boolean("jellyfish.pacemaker");
   b.pacemaker_azimuth_rad = r.number("jellyfish.pacemaker_azimuth_deg") * kDegree;
+  b.conduction_speed_m_per_s = r.number("jellyfish.conduction_speed");
   b.tentacle_count = b.slice.tentacle_length_m > 0.0 ? static_cast<int>(r.integer("jellyfish.tentacle_count")) : 0;
   return b;
 }
@@ -236,6 +237,25 @@ Swim3dSettings read_swim3d_settings(const config::Config& c) {
   }
   check_memory(s);
   return s;
+}
+
+config::Config axisymmetric_counterpart(const config::Config& c, const config::Config& builtin) {
+  const Swim3dSettings s = read_swim3d_settings(c);
+  const swim3d::Swim3dSpec& spec = s.spec;
+  config::Config a = c;
+  a.set("tank.geometry=\"axisymmetric\"");
+  for (const char* key : fields_of_3d()) a.set(std::string(key) + "=" + builtin.literal(key));
+  for (const char* key : {"tank.solver", "tank.convection", "tank.advection", "tank.symmetry", "coupling.kernel",
+                          "coupling.max_dt", "coupling.threads", "output.fps"})
+    a.set(std::string(key) + "=" + builtin.literal(key));
+  a.set("tank.width=" + config::format_number(spec.tank_size_m[0]));
+  a.set("tank.height=" + config::format_number(spec.tank_size_m[1]));
+  a.set("tank.cells=[" + std::to_string(spec.cells[0]) + ", " + std::to_string(spec.cells[1]) + "]");
+  a.set("jellyfish.position=[" + config::format_number(0.5 * spec.tank_size_m[0]) + ", " +
+        config::format_number(spec.aperture_height_m) + "]");
+  a.set("output.frame_interval=" +
+        config::format_number(1.0 / (spec.frames_per_cycle * spec.bell.slice.frequency_hz)));
+  return a;
 }
 
 }  // namespace jellysim::scene

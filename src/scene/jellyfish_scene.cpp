@@ -10,6 +10,7 @@
 #include "jellysim/fluid/fluid_solver.hpp"
 #include "jellysim/fluid/poisson.hpp"
 #include "jellysim/io/output.hpp"
+#include "jellysim/scene/jellyfish_3d_scene.hpp"
 #include "jellysim/scene/objects.hpp"
 
 namespace jellysim::scene {
@@ -252,11 +253,16 @@ std::vector<Parameter> coupling_and_output_parameters() {
 std::vector<Parameter> shell_parameters() {
   return {
       number("jellyfish.shell_edge", "0.0", "m", Range::closed(0.0, 1.0),
-             "3D only: the shell mesh's edge length, in [diameter / 1000, diameter / 2]; 0: 0.8 of a fluid cell"),
+             "3D only: the shell mesh's edge length, in [diameter / 1000, diameter / 2]; 0: half a fluid cell "
+             "(Peskin's rule, as the slice's markers)"),
       boolean("jellyfish.pacemaker", "false",
               "3D only: the impulse starts at one point of the margin (the bell turns); false: the margin fires at once"),
       number("jellyfish.pacemaker_azimuth_deg", "0.0", "°", Range::closed(-360.0, 360.0),
              "3D only: where on the margin the pacemaker sits, from +x toward +z (0 or 180: the half tank is solved)"),
+      number("jellyfish.conduction_speed", "0.0", "m/s", Range::closed(0.0, 1000.0),
+             "3D only: the pacemaker's impulse's speed around the margin; 0: the slice's, the meridian's arc over "
+             "jellyfish.neural_delay (1.2 m/s for the built-in bell: the far side 0.05 s late; 0.25 turns it by "
+             "about 24 degrees a cycle, docs/three-d.md)"),
       integer("jellyfish.tentacle_count", "12", 0, 1000,
               "3D only: tentacles (rods of jellyfish.tentacle_length) hanging evenly around the margin; 0: none"),
   };
@@ -424,7 +430,7 @@ namespace {
 /// their defaults: the 2D run would ignore them.
 constexpr const char* kFieldsOf3d[] = {"tank.size", "output.frames_per_cycle", "jellyfish.shell_edge",
                                        "jellyfish.pacemaker", "jellyfish.pacemaker_azimuth_deg",
-                                       "jellyfish.tentacle_count"};
+                                       "jellyfish.conduction_speed", "jellyfish.tentacle_count"};
 
 /// A 3D scene here (the 2D reader: sweep, view, batch, the experiments) or a 3D-only field in a 2D
 /// scene: refused, naming the field (docs/three-d.md, "The 3D scene").
@@ -607,5 +613,7 @@ const ParameterTable& jellyfish_scene() {
   static const ParameterTable table = make_jellyfish_scene();
   return table;
 }
+
+std::span<const char* const> fields_of_3d() { return kFieldsOf3d; }
 
 }  // namespace jellysim::scene

@@ -160,23 +160,30 @@ Frame3d Swimmer3d::frame() const {
 // Equal coupled steps land on the frame's time: n = ⌈(t_frame − t) / Δt_max⌉ with Δt_max the
 // smaller of the spec's and the fluid's present limit (a frame clock of the frame index, so the
 // times do not drift).
+bool Swimmer3d::step_toward_frame() {
+  if (frame_reached_) krylov_since_frame_ = 0, frame_reached_ = false;
+  const double target = static_cast<double>(frame_index_ + 1) * frame_interval_s();
+  const double limit = std::min(spec_.max_time_step_s, fluid_->stable_time_step());
+  const double left = target - time_s();
+  const double dt = left / std::ceil(left / limit - 1e-9);
+  const auto t0 = std::chrono::steady_clock::now();
+  const ib3d::CoupledStepReport3d r = coupling_->step(dt);
+  timings_.total_s += seconds_since(t0);
+  timings_.transfer_s += r.transfer_s, timings_.fluid_s += r.fluid_s, timings_.krylov_s += r.krylov_s;
+  ++timings_.steps;
+  timings_.krylov_iterations += r.krylov_iterations;
+  krylov_since_frame_ += r.krylov_iterations;
+  if (!r.converged)
+    throw std::runtime_error("3D swimmer: the semi-implicit solve did not converge at t = " + std::to_string(time_s()) +
+                             " s (relative residual " + std::to_string(r.relative_residual) + ")");
+  if (target - time_s() > 1e-12 * target) return false;
+  ++frame_index_;
+  frame_reached_ = true;
+  return true;
+}
+
 Frame3d Swimmer3d::advance_frame() {
-  const double target = static_cast<double>(++frame_index_) * frame_interval_s();
-  krylov_since_frame_ = 0;
-  while (target - time_s() > 1e-12 * target) {
-    const double limit = std::min(spec_.max_time_step_s, fluid_->stable_time_step());
-    const double left = target - time_s();
-    const double dt = left / std::ceil(left / limit - 1e-9);
-    const auto t0 = std::chrono::steady_clock::now();
-    const ib3d::CoupledStepReport3d r = coupling_->step(dt);
-    timings_.total_s += seconds_since(t0);
-    timings_.transfer_s += r.transfer_s, timings_.fluid_s += r.fluid_s, timings_.krylov_s += r.krylov_s;
-    ++timings_.steps;
-    timings_.krylov_iterations += r.krylov_iterations;
-    krylov_since_frame_ += r.krylov_iterations;
-    if (!r.converged)
-      throw std::runtime_error("3D swimmer: the semi-implicit solve did not converge at t = " + std::to_string(time_s()) +
-                               " s (relative residual " + std::to_string(r.relative_residual) + ")");
+  while (!step_toward_frame()) {
   }
   return frame();
 }

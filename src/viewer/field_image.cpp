@@ -61,33 +61,46 @@ CellVelocities cell_velocities(const fluid::FlowState& flow) {
   return c;
 }
 
-std::vector<double> field_values(const fluid::FlowState& flow, FieldShown shown) {
-  const CellVelocities c = cell_velocities(flow);
+/// The in-plane cell-centred velocity of plane k, the whole width when mirrored (u odd in x).
+CellVelocities plane_velocities(const fluid3d::FlowState3d& flow, int k, bool mirror_x) {
+  const fluid3d::Grid3d& g = flow.grid;
+  const int n = g.n(0), nx = mirror_x ? 2 * n : n, ny = g.n(1);
+  CellVelocities c{nx, ny, std::vector<double>(static_cast<std::size_t>(nx) * ny),
+                   std::vector<double>(static_cast<std::size_t>(nx) * ny)};
+  const fluid3d::Field3d& u = flow.velocity.c[0];
+  const fluid3d::Field3d& v = flow.velocity.c[1];
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double uc = 0.5 * (u[g.index(i, j, k)] + u[g.index(i + 1, j, k)]);
+      const double vc = 0.5 * (v[g.index(i, j, k)] + v[g.index(i, j + 1, k)]);
+      const int at = mirror_x ? n + i : i;
+      c.u[c.index(at, j)] = uc, c.v[c.index(at, j)] = vc;
+      if (mirror_x) c.u[c.index(n - 1 - i, j)] = -uc, c.v[c.index(n - 1 - i, j)] = vc;
+    }
+  return c;
+}
+
+/// Speed or ω_z per cell of a plane's velocities (central differences; at the edges the index is
+/// clamped, a half-width one-sided difference).
+std::vector<double> plane_values(const CellVelocities& c, double dx, double dy, FieldShown shown) {
   std::vector<double> values(c.u.size());
-  const double dx = flow.grid.dx(), dy = flow.grid.dy();
-  for (int j = 0; j < c.ny; ++j) {
+  for (int j = 0; j < c.ny; ++j)
     for (int i = 0; i < c.nx; ++i) {
       double value = std::hypot(c.at_u(i, j), c.at_v(i, j));
-      if (shown == FieldShown::vorticity) {
-        const double dvdx = (c.at_v(i + 1, j) - c.at_v(i - 1, j)) / (2.0 * dx);
-        const double dudy = (c.at_u(i, j + 1) - c.at_u(i, j - 1)) / (2.0 * dy);
-        value = dvdx - dudy;
-      }
+      if (shown == FieldShown::vorticity)
+        value = (c.at_v(i + 1, j) - c.at_v(i - 1, j)) / (2.0 * dx) - (c.at_u(i, j + 1) - c.at_u(i, j - 1)) / (2.0 * dy);
       values[c.index(i, j)] = value;
     }
-  }
   return values;
 }
 
 std::uint8_t byte(double x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0, 1.0) * 255.0)); }
 
-}  // namespace
-
-FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double range) {
+/// The values coloured with the range `range` (≤ 0: their own largest magnitude).
+FieldImage coloured(const std::vector<double>& values, int width, int height, FieldShown shown, double range) {
   FieldImage image;
-  image.width = flow.grid.nx;
-  image.height = flow.grid.ny;
-  const std::vector<double> values = field_values(flow, shown);
+  image.width = width;
+  image.height = height;
   for (double v : values) {
     if (std::isfinite(v)) image.max_value = std::max(image.max_value, std::abs(v));
   }
@@ -100,6 +113,18 @@ FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double ra
     image.rgba[4 * k + 3] = 255;
   }
   return image;
+}
+
+}  // namespace
+
+FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double range) {
+  return coloured(plane_values(cell_velocities(flow), flow.grid.dx(), flow.grid.dy(), shown), flow.grid.nx, flow.grid.ny,
+                  shown, range);
+}
+
+FieldImage field_image(const fluid3d::FlowState3d& flow, int k, FieldShown shown, double range, bool mirror_x) {
+  const CellVelocities c = plane_velocities(flow, k, mirror_x);
+  return coloured(plane_values(c, flow.grid.h(0), flow.grid.h(1), shown), c.nx, c.ny, shown, range);
 }
 
 std::array<std::uint8_t, 3> field_colour(FieldShown shown, double s) {

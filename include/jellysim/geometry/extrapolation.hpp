@@ -9,6 +9,7 @@
 // Umbrella rows i = 0 … rows − 1: row 0 is the exumbrellar apex (a pole vertex), then exumbrellar
 // rings from the apex down to the rim, subumbrellar rings from the rim up, and the subumbrellar
 // apex (pole) last — a closed surface around the mesoglea.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -36,7 +37,9 @@ struct GeometrySettings {
 void validate_geometry_settings(const GeometrySettings& settings);
 
 /// Where the umbrella's vertices are: vertex 0 is the exumbrellar apex, ring r ∈ [1, rows − 2]
-/// holds disc_points vertices, and the subumbrellar apex is last.
+/// holds disc_points vertices, and the subumbrellar apex is last. The slice pipeline's: a simulated
+/// surface (surface_geometry.hpp) has no rings and leaves it empty (rows = 0); what every umbrella
+/// has is its mesh part (umbrella_vertex_count).
 struct UmbrellaLayout {
   int rows = 0;              ///< latitude rows including both poles
   int disc_points = 0;       ///< j_max
@@ -45,14 +48,25 @@ struct UmbrellaLayout {
   std::uint32_t vertex_count() const { return static_cast<std::uint32_t>(2 + (rows - 2) * disc_points); }
 };
 
-/// One frame of 3D geometry. mesh.parts: "umbrella" (vertices [0, umbrella.vertex_count())) and,
+/// One frame of 3D geometry. mesh.parts: "umbrella" (vertices [0, umbrella_vertex_count(g))) and,
 /// when the slice has tentacles, "tentacles" (thin tubes around tentacle_lines).
 struct FrameGeometry {
   double time_s = 0.0;
   Mesh mesh;
-  UmbrellaLayout umbrella;
+  UmbrellaLayout umbrella;  ///< the slice pipeline's rings; empty for a simulated surface
+  /// A simulated surface's texture coordinates, one (u, v) per umbrella vertex (the slice pipeline's
+  /// follow from its ring layout and leave this empty; texture_coordinates.hpp).
+  std::vector<std::array<float, 2>> umbrella_uv;
   std::vector<std::vector<Vec3>> tentacle_lines;  ///< tentacles as polylines (after noise)
 };
+
+/// The umbrella's vertices [0, count): those of its mesh part (0 without one).
+std::uint32_t umbrella_vertex_count(const FrameGeometry& g);
+
+/// Thin tubes around the tentacle polylines appended to `mesh` as its part "tentacles" (tube_sides,
+/// tentacle_radius_m tapering to 30 % at the tip, parallel-transported frames): the slice's strands
+/// and a simulated bell's rods alike.
+void append_tentacle_tubes(const std::vector<std::vector<Vec3>>& lines, const GeometrySettings& settings, Mesh& mesh);
 
 /// Builds frames with one noise field (one individual) and one noise length scale.
 class GeometryBuilder {

@@ -1,6 +1,9 @@
 #pragma once
 // A synthetic, analytically shaped jellyfish slice for developing and testing the rendering
 // pipeline without the simulation: a symmetric hemi-ellipse bell that contracts toward a cone.
+#include <vector>
+
+#include "jellysim/geometry/surface_geometry.hpp"
 #include "jellysim/jellyfish/slice_frame.hpp"
 #include "jellysim/math/vec2.hpp"
 
@@ -29,5 +32,13 @@ jellyfish::SliceFrame synthetic_bell(const SyntheticBell& spec);
 /// Shorthand for the common fields.
 jellyfish::SliceFrame synthetic_bell(double diameter_m, double height_m, double contraction, int umbrella_points,
                                      int tentacle_points);
+
+/// The synthetic bell as a simulated 3D bell would record it (surface_geometry.hpp), for tests and
+/// development of the surface path: one frame per spec, its slice's right half (apex to margin: the
+/// subumbrella's meridian) revolved about the axis through the aperture centre, `ring_points`
+/// vertices per ring at σ_j = 2πj / ring_points (x = c + r (cos σ ê − sin σ ẑ), the extrapolation's
+/// eq. 7.12) and one at the apex; `strands` copies of the right tentacle at even azimuths from 0.
+/// The triangles' normals point out of the cavity. ϑ is the first spec's thickness.
+SurfaceFrames revolved_synthetic_bell(const std::vector<SyntheticBell>& frames, int ring_points, int strands);
 
 }  // namespace jellysim::geometry

@@ -17,7 +17,8 @@ using TexCoord = std::array<float, 2>;
 /// surface: the exumbrellar rows 0 … E at v = row / E, the subumbrellar rings from the margin (1) back
 /// up to the subumbrellar apex (0), so both surfaces cover the same square (a two-sided decal); the
 /// poles at u = ½. Tentacle tubes: u = s / tube_sides around the tube, v = m / (samples − 1) from the
-/// root to the tip.
+/// root to the tip. A simulated surface's umbrella (surface_geometry.hpp) brings its own,
+/// g.umbrella_uv. A bell without tentacles has none to add.
 std::vector<TexCoord> texture_coordinates(const FrameGeometry& g);
 
 /// The seam where u wraps from (n − 1)/n back to 0, split: a triangle whose corners' u span more than

@@ -60,13 +60,16 @@ class Transfer3d {
   /// The 1D samples of component c along axis d for a marker at x (wrapped, folded or kept).
   void axis_samples(int c, int d, double x, Stencil3d& s) const;
   void compute_stencils(std::span<const Vec3> x);
+  /// compute_stencils unless the stencils were made for these very positions.
+  void ensure_stencils(std::span<const Vec3> x);
   void spread_slab(std::span<const Vec3> force_n, double scale, int k_begin, int k_end, fluid3d::Velocity3d& acc) const;
 
   fluid3d::Grid3d grid_;
   fluid3d::Boundaries3d boundaries_;
   coupling::Kernel kernel_;
   WorkerPool* pool_;
-  std::vector<Stencil3d> stencils_;  ///< 3 per marker (u, v, w), scratch of spread
+  std::vector<Stencil3d> stencils_;  ///< 3 per marker (u, v, w), for stencil_positions_
+  std::vector<Vec3> stencil_positions_;
 };
 
 }  // namespace jellysim::ib3d

@@ -2,6 +2,7 @@
 // From recorded slices to the files a user holds (thesis §7.2–7.4, §8.2.4): PNG frames, an MP4,
 // an animated .glb, per-frame OBJ/PLY meshes and a small HTML viewer; and the Figure 8.19 stages
 // picture. The only place where geometry, meshes and pixels meet; physics never calls into it.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "jellysim/geometry/extrapolation.hpp"
+#include "jellysim/geometry/surface_geometry.hpp"
 #include "jellysim/io/interchange.hpp"
 #include "jellysim/io/output.hpp"
 #include "jellysim/jellyfish/slice_frame.hpp"
@@ -136,6 +138,16 @@ AnimationOutputs write_animation_outputs(const std::vector<std::vector<jellyfish
                                          const ObstacleFrames& obstacles = {},
                                          const std::vector<std::vector<Vec2>>& tracers = {});
 
+/// The same files for a simulated 3D bell (the 3D swimmer; geometry/surface_geometry.hpp): its
+/// surface drawn as simulated, closed into a wall of thickness frames.thickness_m, its tentacles as
+/// tubes; no extrapolation and no noise (settings.geometry's noise is not used), no obstacles or
+/// marine snow (slice-tank only). The camera, pixels, video, meshes, caches, .glb and viewer follow
+/// the slice pipeline's rules: one path after the geometry. Throws InputError for bad frames
+/// (validate_surface_frames) or settings, RunError when a file, OpenGL or ffmpeg fails.
+AnimationOutputs write_surface_animation_outputs(const geometry::SurfaceFrames& frames,
+                                                 const PipelineSettings& settings, const io::OutputDir& out,
+                                                 const FrameProgress& progress = {});
+
 /// The camera distance (m) for a first frame whose mesh is `extent_m` across at its widest:
 /// camera_distance × extent when camera_distance > 0, else camera_distance_m.
 double camera_distance_for(const PipelineSettings& settings, double extent_m);
@@ -144,6 +156,9 @@ double camera_distance_for(const PipelineSettings& settings, double extent_m);
 /// every frame from the configured direction, at camera_distance_for(…, the first frame's extent)
 /// (with camera_distance > 0, further back if the box's bounding sphere would not fit the picture).
 Camera fixed_camera(const std::vector<std::vector<jellyfish::SliceFrame>>& school, const PipelineSettings& settings,
+                    const geometry::Mesh& first);
+/// The same for a path given as its box (min, max corners, m): the one framing rule of both pipelines.
+Camera fixed_camera(const std::array<geometry::Vec3, 2>& path_box, const PipelineSettings& settings,
                     const geometry::Mesh& first);
 
 /// Figure 8.19 as one picture: rows 2D physics model, 2D rendering model, extrapolated to 3D,

@@ -6,6 +6,7 @@
 // have are refused unless left at their defaults, the 2D solver's own knobs are ignored (listed in
 // docs/three-d.md).
 #include <cstdint>
+#include <span>
 
 #include "jellysim/config/config.hpp"
 #include "jellysim/swim3d/swimmer_3d.hpp"
@@ -29,5 +30,16 @@ bool is_3d_scene(const config::Config& c);
 /// Reads and validates a 3D jellyfish scene: InputError naming the field and the allowed values
 /// (also when the water's estimated memory exceeds the budget, core/memory.hpp).
 Swim3dSettings read_swim3d_settings(const config::Config& c);
+
+/// The fields only the 3D scene reads (refused in a 2D scene unless left at their defaults).
+std::span<const char* const> fields_of_3d();
+
+/// The 3D scene `c` as the axisymmetric solver's scene (issue 40 part 4's check, `jellysim experiment
+/// 3d-vs-axisymmetric`): the same bell, stroke, water and frames; the tank's x–y section as the
+/// axisymmetric tank (its width the 3D tank's, so its radius the 3D tank's half width; the same
+/// cells along x and y), the aperture on the axis at the same height; the 3D-only fields dropped;
+/// the axisymmetric solver's own numerics (tank.solver, convection, advection, symmetry and the
+/// coupling's kernel, time step and threads) those of the built-in scene, `builtin`.
+config::Config axisymmetric_counterpart(const config::Config& c, const config::Config& builtin);
 
 }  // namespace jellysim::scene

@@ -117,6 +117,10 @@ class Swimmer3d {
   /// limit) and records it. Throws std::runtime_error when the flow stops being finite or GMRES
   /// does not converge.
   Frame3d advance_frame();
+  /// One coupled step of those advance_frame takes (the same steps, one at a time, for a viewer
+  /// that draws between them); true when it reached the next frame's time, whose figures frame()
+  /// then gives. Throws as advance_frame does.
+  bool step_toward_frame();
   const Swim3dTimings& timings() const { return timings_; }
 
  private:
@@ -126,8 +130,9 @@ class Swimmer3d {
   std::unique_ptr<fluid3d::FluidSolver3d> fluid_;
   ib3d::Markers3d markers_;
   std::unique_ptr<ib3d::ImmersedBoundary3d> coupling_;
-  std::int64_t frame_index_ = 0;
+  std::int64_t frame_index_ = 0;   ///< the last frame reached
   int krylov_since_frame_ = 0;
+  bool frame_reached_ = true;      ///< the next step starts a new frame
   Swim3dTimings timings_;
 };
 

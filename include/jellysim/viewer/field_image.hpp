@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "jellysim/fluid/grid.hpp"
+#include "jellysim/fluid3d/grid_3d.hpp"
 
 namespace jellysim::viewer {
 
@@ -32,5 +33,11 @@ inline constexpr std::array<std::uint8_t, 3> kMuscleColour{240, 90, 240};
 /// Colours the flow. `range` > 0 fixes the colour range (speed 0…range, vorticity −range…range);
 /// ≤ 0 takes the field's own maximum.
 FieldImage field_image(const fluid::FlowState& flow, FieldShown shown, double range);
+
+/// The 3D flow on one x–y plane of cells (k: its index along z), coloured as above: the speed of
+/// the in-plane velocity (u, v) or the vorticity's z component ∂v/∂x − ∂u/∂y. `mirror_x`: the
+/// grid is the half of the tank x ≥ 0 (a mirror plane at its low x side, the quarter tank): the
+/// image shows the whole width, the left half the mirror image (u and ω_z change sign there).
+FieldImage field_image(const fluid3d::FlowState3d& flow, int k, FieldShown shown, double range, bool mirror_x);
 
 }  // namespace jellysim::viewer
