@@ -2,7 +2,8 @@
 // scene"): the shell bell in 3D water (swim3d::Swimmer3d) frame by frame, with metrics.csv (the
 // bell's centroid, velocity, axis, heading, tilt and cavity volume per frame), summary.json (the
 // swimming per cycle, the grid, the cost) and, with output.vtk, the flow of every frame
-// (frames/field_NNNNNN.vti and jellyfish.pvd, named as the 2D run's). A failure (the flow no longer
+// (frames/field_NNNNNN.vti and jellyfish.pvd, named as the 2D run's) and the bell's surface
+// (frames/bell_NNNNNN.obj). A failure (the flow no longer
 // finite, GMRES not converging) or SIGINT/SIGTERM ends the run with the frames recorded so far
 // written and the time and step in the summary's failure, as the 2D run does (docs/architecture.md).
 #include "jellyfish_3d.hpp"
@@ -21,6 +22,7 @@
 #include "jellysim/core/errors.hpp"
 #include "jellysim/core/interrupt.hpp"
 #include "jellysim/core/memory.hpp"
+#include "jellysim/io/mesh_files.hpp"
 #include "jellysim/io/vtk_fields.hpp"
 #include "jellysim/render/animation_outputs.hpp"
 #include "jellysim/scene/jellyfish_3d_scene.hpp"
@@ -29,18 +31,44 @@
 namespace jellysim::experiments {
 namespace {
 
-/// The flow of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the solved part of
-/// the tank (the quarter or half tank's cells), and the time series jellyfish.pvd.
-class FlowFiles3d {
+/// The bell's surface at the markers' positions (the shell's vertices come first), with
+/// area-weighted vertex normals, as one mesh part "bell" for the OBJ writer.
+geometry::Mesh bell_surface(const shell::TriangleMesh& surface, const ib3d::Markers3d& markers) {
+  geometry::Mesh m;
+  for (std::size_t i = 0; i < surface.vertices.size(); ++i)
+    m.positions.push_back({markers.position[i][0], markers.position[i][1], markers.position[i][2]});
+  m.normals.assign(m.positions.size(), geometry::Vec3{});
+  for (const std::array<int, 3>& t : surface.triangles) {
+    const auto corner = [&](int k) { return static_cast<std::size_t>(t[static_cast<std::size_t>(k)]); };
+    const geometry::Vec3 n = geometry::cross(m.positions[corner(1)] - m.positions[corner(0)],
+                                             m.positions[corner(2)] - m.positions[corner(0)]);
+    for (int k = 0; k < 3; ++k) {
+      m.normals[corner(k)] += n;
+      m.indices.push_back(static_cast<std::uint32_t>(corner(k)));
+    }
+  }
+  for (geometry::Vec3& n : m.normals) n = geometry::normalized(n);
+  m.parts.push_back({"bell", 0, static_cast<std::uint32_t>(m.indices.size())});
+  return m;
+}
+
+/// The flow and the bell of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the
+/// solved part of the tank (the quarter or half tank's cells), with the time series jellyfish.pvd,
+/// and frames/bell_NNNNNN.obj, the bell's surface (the whole bell; a numbered file series).
+class FrameFiles3d {
  public:
-  explicit FlowFiles3d(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
+  explicit FrameFiles3d(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
 
   void write(const swim3d::Swimmer3d& swimmer, std::size_t index) {
-    char name[32];
-    std::snprintf(name, sizeof name, "field_%06zu.vti", index);
-    io::write_streamed(frames_, name, [&](std::ostream& o) { io::write_flow_vti(o, swimmer.fluid().state()); });
-    entries_.push_back({swimmer.time_s(), std::string("frames/") + name, 0, "field"});
+    char id[16];
+    std::snprintf(id, sizeof id, "%06zu", index);
+    const std::string field = std::string("field_") + id + ".vti";
+    io::write_streamed(frames_, field, [&](std::ostream& o) { io::write_flow_vti(o, swimmer.fluid().state()); });
+    entries_.push_back({swimmer.time_s(), "frames/" + field, 0, "field"});
     io::write_streamed(out_, "jellyfish.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
+    const std::string comment = "the bell at t = " + io::format_double(swimmer.time_s()) + " s";
+    frames_.write_text(std::string("bell_") + id + ".obj",
+                       io::obj_text(bell_surface(swimmer.bell().surface().mesh, swimmer.markers()), comment));
   }
 
  private:
@@ -89,7 +117,7 @@ std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::strin
 
 }  // namespace
 
-/// Runs the frames, writing the flow of each when asked; progress after every frame.
+/// Runs the frames, writing the flow and the bell of each when asked; progress after every frame.
 Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out,
                    const sim::ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -105,7 +133,7 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
     rec.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
                              static_cast<std::uint32_t>(t[2])});
   rec.tentacles = swimmer->bell().tentacles();
-  std::optional<FlowFiles3d> files;
+  std::optional<FrameFiles3d> files;
   if (settings.vtk) files.emplace(out);
   const auto record = [&](swim3d::Frame3d f) {
     if (files) files->write(*swimmer, rec.frames.size());
@@ -187,6 +215,7 @@ void add_cost_figures(nlohmann::ordered_json& j, const scene::Swim3dSettings& s,
   j["estimated_memory_bytes"] = s.estimated_memory_bytes;
 }
 
+/// summary.json's figures (docs/three-d.md, "The 3D scene": the bell, its swimming, the grid, the cost).
 nlohmann::ordered_json figures_3d(const scene::Swim3dSettings& s, const Recording3d& rec) {
   nlohmann::ordered_json j;
   j["units"] = {{"length", "m"}, {"time", "s"}, {"velocity", "m/s"}, {"volume", "m^3"}, {"angle", "deg"}};

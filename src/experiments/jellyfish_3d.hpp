@@ -24,8 +24,9 @@ struct Recording3d {
   double wall_seconds = 0.0;
 };
 
-/// Runs the scene's frames (the first at t = 0), writing the flow of each into `out` when the
-/// settings ask (output.vtk); progress after every frame. A failure or SIGINT ends it early, named.
+/// Runs the scene's frames (the first at t = 0), writing the flow and the bell's surface of each into
+/// `out` when the settings ask (output.vtk); progress after every frame. A failure or SIGINT ends it
+/// early, named.
 Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out, const sim::ProgressCallback& progress);
 
 /// Reads and validates the 3D scene (InputError before anything is written); the run writes
