@@ -94,16 +94,18 @@ std::string non_finite(const swim3d::Frame3d& f) {
   return std::isfinite(f.cavity_volume_m3) ? "" : "the cavity's volume is not finite";
 }
 
-/// The next frame, or the failure that stopped the run before it (SIGINT/SIGTERM at a frame
-/// boundary; a step that threw; a figure that is not finite).
+/// The next frame, or the failure that stopped the run before it (SIGINT/SIGTERM between two
+/// coupled steps; a step that threw; a figure that is not finite).
 std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::string& failure) {
-  if (const int signal = core::interrupt_signal()) {
-    failure = "interrupted by " + core::signal_name(signal) + " at t = " + std::to_string(swimmer.time_s()) +
-              " s (step " + std::to_string(swimmer.timings().steps) + ")";
-    return std::nullopt;
-  }
   try {
-    swim3d::Frame3d f = swimmer.advance_frame();
+    do {  // step by step, so that SIGINT/SIGTERM stops the run within a step, not a frame
+      if (const int signal = core::interrupt_signal()) {
+        failure = "interrupted by " + core::signal_name(signal) + " at t = " + std::to_string(swimmer.time_s()) +
+                  " s (step " + std::to_string(swimmer.timings().steps) + ")";
+        return std::nullopt;
+      }
+    } while (!swimmer.step_toward_frame());
+    swim3d::Frame3d f = swimmer.frame();
     if (const std::string why = non_finite(f); !why.empty()) {
       failure = diverged(swimmer, why);
       return std::nullopt;
