@@ -63,4 +63,17 @@ std::filesystem::path next_screenshot_path(const std::filesystem::path& dir, con
   }
 }
 
+std::string keep_frame(const render::RgbImage& frame, Recorder& recorder, bool screenshot,
+                       const std::filesystem::path& record_dir) {
+  std::string message;  // why the recording stopped, if it did
+  if (!recorder.active() || recorder.add(frame, &message)) message.clear();
+  if (screenshot) {
+    const auto dir = record_dir.empty() ? std::filesystem::path("out/view") : record_dir;
+    const auto path = next_screenshot_path(dir, "screenshot");
+    render::write_png(frame, path);
+    message = "saved " + path.string();
+  }
+  return message;
+}
+
 }  // namespace jellysim::viewer

@@ -34,4 +34,10 @@ class Recorder {
 /// The next free name `prefix_NNNN.png` in `dir` (created).
 std::filesystem::path next_screenshot_path(const std::filesystem::path& dir, const std::string& prefix);
 
+/// The frame just read back from the window: added to the recording when one runs, and written as
+/// the next screenshot_NNNN.png in `record_dir` (out/view when empty) when `screenshot`. Returns the
+/// message for the panel ("" when there is none).
+std::string keep_frame(const render::RgbImage& frame, Recorder& recorder, bool screenshot,
+                       const std::filesystem::path& record_dir);
+
 }  // namespace jellysim::viewer

@@ -513,15 +513,9 @@ void Viewer::capture_if_needed(bool last_frame) {
       message_ = "recording to " + dir.string();
     }
   }
-  std::string why;
-  if (recorder_.active() && !recorder_.add(last_capture_, &why) && !why.empty()) message_ = why;
-  if (screenshot_requested_) {
-    screenshot_requested_ = false;
-    const auto dir = options_.record_dir.empty() ? std::filesystem::path("out/view") : options_.record_dir;
-    const auto path = next_screenshot_path(dir, "screenshot");
-    render::write_png(last_capture_, path);
-    message_ = "saved " + path.string();
-  }
+  const std::string kept = keep_frame(last_capture_, recorder_, screenshot_requested_, options_.record_dir);
+  if (!kept.empty()) message_ = kept;
+  screenshot_requested_ = false;
 }
 
 int Viewer::run() {

@@ -228,15 +228,9 @@ void Viewer3d::capture(bool last_frame) {
   const int w = window_->width(), h = window_->height();
   last_capture_ = render::RgbImage(w, h);
   last_capture_.pixels = gl::read_screen_rgb(w, h);
-  std::string why;
-  if (recorder_.active() && !recorder_.add(last_capture_, &why) && !why.empty()) message_ = why;
-  if (screenshot_requested_) {
-    screenshot_requested_ = false;
-    const auto dir = options_.record_dir.empty() ? std::filesystem::path("out/view") : options_.record_dir;
-    const auto path = next_screenshot_path(dir, "screenshot");
-    render::write_png(last_capture_, path);
-    message_ = "saved " + path.string();
-  }
+  const std::string kept = keep_frame(last_capture_, recorder_, screenshot_requested_, options_.record_dir);
+  if (!kept.empty()) message_ = kept;
+  screenshot_requested_ = false;
 }
 
 int Viewer3d::run() {
