@@ -197,7 +197,7 @@ SwimSummary3d summarize(const std::vector<Frame3d>& frames, int frames_per_cycle
     const Frame3d& a = frames[end - per];
     const Frame3d& b = frames[end];
     s.cycle_distance_m.push_back(dot(sub(b.centroid, a.centroid), first.axis));
-    s.cycle_heading_deg.push_back(b.heading_deg - a.heading_deg);
+    s.cycle_heading_deg.push_back(std::remainder(b.heading_deg - a.heading_deg, 360.0));  // through ±180° too
   }
   const auto mean_after_first = [](const std::vector<double>& v) {
     if (v.size() < 2) return v.empty() ? NAN : v.front();

@@ -127,7 +127,7 @@ TEST(Swimmer3dFigures, HeadingAndTiltOfATurnedBell) {
 TEST(Swimmer3dFigures, TheSummaryTakesEachCycleFromItsFrames) {
   std::vector<Frame3d> frames(7);
   const double ys[] = {0.0, 0.004, 0.010, 0.013, 0.021, 0.024, 0.033};
-  const double headings[] = {0.0, 1.0, 2.0, 2.5, 3.0, 4.5, 5.0};
+  const double headings[] = {0.0, 1.0, 2.0, 2.5, 3.0, 4.5, 5.0};  // the last cycle crosses ±180° below
   for (std::size_t k = 0; k < frames.size(); ++k) {
     frames[k].centroid = {0.001 * static_cast<double>(k % 2), ys[k], 0.0};
     frames[k].axis = {0.0, 1.0, 0.0};
@@ -144,6 +144,8 @@ TEST(Swimmer3dFigures, TheSummaryTakesEachCycleFromItsFrames) {
   EXPECT_DOUBLE_EQ(s.heading_change_deg_per_cycle, 0.5 * (1.0 + 2.0));
   EXPECT_DOUBLE_EQ(s.final_heading_deg, 5.0);
   EXPECT_DOUBLE_EQ(s.sideways_m, 0.0);  // frame 6 is back on the axis
+  frames[4].heading_deg = 178.0, frames[6].heading_deg = -176.0;  // turning on through 180°
+  EXPECT_DOUBLE_EQ(summarize(frames, 2).cycle_heading_deg[2], 6.0);
 }
 
 // A quarter of a cycle of the symmetric stroke in the small tank: the frames land on the frame
