@@ -135,6 +135,7 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
     rec.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]),
                              static_cast<std::uint32_t>(t[2])});
   rec.tentacles = swimmer->bell().tentacles();
+  rec.surface_vertices = swimmer->bell().surface().mesh.vertices.size();
   std::optional<FrameFiles3d> files;
   if (settings.vtk) files.emplace(out);
   const auto record = [&](swim3d::Frame3d f) {
@@ -248,21 +249,8 @@ geometry::SurfaceFrames surface_frames(const Recording3d& rec, double thickness_
   geometry::SurfaceFrames out;
   out.thickness_m = thickness_m;
   out.triangles = rec.triangles;
-  std::size_t vertices = 0;
-  for (const auto& t : rec.triangles) vertices = std::max<std::size_t>(vertices, std::max({t[0], t[1], t[2]}) + 1);
-  const auto point = [](const swim3d::Vec3& p) { return geometry::Vec3{p[0], p[1], p[2]}; };
-  for (const swim3d::Frame3d& f : rec.frames) {
-    out.time_s.push_back(f.time_s);
-    std::vector<geometry::Vec3> surface(vertices);
-    for (std::size_t i = 0; i < vertices; ++i) surface[i] = point(f.points[i]);
-    std::vector<std::vector<geometry::Vec3>> strands;
-    for (const std::vector<int>& strand : rec.tentacles) {
-      strands.emplace_back();
-      for (int i : strand) strands.back().push_back(point(f.points[static_cast<std::size_t>(i)]));
-    }
-    out.surface.push_back(std::move(surface));
-    out.tentacles.push_back(std::move(strands));
-  }
+  for (const swim3d::Frame3d& f : rec.frames)
+    geometry::append_surface_frame(out, f.time_s, f.points, rec.surface_vertices, rec.tentacles);
   return out;
 }
 

@@ -18,6 +18,7 @@ struct Recording3d {
   std::vector<swim3d::Frame3d> frames;
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< the bell's surface (its vertices first in each frame's points)
   std::vector<std::vector<int>> tentacles;              ///< each rod's points from its root
+  std::size_t surface_vertices = 0;                     ///< the first points of each frame
   std::string failure;
   swim3d::Swim3dTimings timings;
   std::size_t markers = 0;

@@ -31,33 +31,20 @@ double wall_now() {
   return std::chrono::duration<double>(clock::now() - start).count();
 }
 
-geometry::Vec3 point(const swim3d::Vec3& p) { return {p[0], p[1], p[2]}; }
-
 /// The bell's topology for the surface builder, with one frame: the present positions.
 geometry::SurfaceFrames surface_holder(const swim3d::Swimmer3d& sim) {
   geometry::SurfaceFrames f;
   f.thickness_m = sim.spec().bell.slice.thickness_m;
   for (const auto& t : sim.bell().surface().mesh.triangles)
     f.triangles.push_back({static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]), static_cast<std::uint32_t>(t[2])});
-  f.time_s = {sim.time_s()};
-  f.surface.resize(1);
-  f.tentacles.resize(1);
   return f;
 }
 
-/// Copies the markers' positions into frame 0 of `f` (the surface's vertices, then each rod).
+/// The markers' positions as the holder's one frame (the surface's vertices, then each rod).
 void copy_positions(const swim3d::Swimmer3d& sim, geometry::SurfaceFrames& f) {
-  const std::vector<swim3d::Vec3>& x = sim.markers().position;
-  const std::size_t vertices = sim.bell().surface().mesh.vertices.size();
-  f.time_s[0] = sim.time_s();
-  f.surface[0].resize(vertices);
-  for (std::size_t i = 0; i < vertices; ++i) f.surface[0][i] = point(x[i]);
-  const auto& strands = sim.bell().tentacles();
-  f.tentacles[0].resize(strands.size());
-  for (std::size_t s = 0; s < strands.size(); ++s) {
-    f.tentacles[0][s].clear();
-    for (int i : strands[s]) f.tentacles[0][s].push_back(point(x[static_cast<std::size_t>(i)]));
-  }
+  f.time_s.clear(), f.surface.clear(), f.tentacles.clear();
+  geometry::append_surface_frame(f, sim.time_s(), sim.markers().position, sim.bell().surface().mesh.vertices.size(),
+                                 sim.bell().tentacles());
 }
 
 class Viewer3d {

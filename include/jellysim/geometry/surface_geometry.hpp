@@ -74,4 +74,19 @@ double signed_cavity_volume(const std::vector<Vec3>& positions,
 /// Every point of every frame (surface and tentacles) in one box: the path the bell took.
 std::array<Vec3, 2> surface_path_bounds(const SurfaceFrames& frames);
 
+/// Appends a frame at `time_s` from a simulation's points (anything indexable by [0], [1], [2], in
+/// metres, e.g. the 3D swimmer's): the surface's vertices are points [0, vertex_count), each strand's
+/// nodes the points it lists (from its root).
+template <class Point>
+void append_surface_frame(SurfaceFrames& frames, double time_s, const std::vector<Point>& points,
+                          std::size_t vertex_count, const std::vector<std::vector<int>>& strands) {
+  const auto at = [&](std::size_t i) { return Vec3{points[i][0], points[i][1], points[i][2]}; };
+  frames.time_s.push_back(time_s);
+  std::vector<Vec3>& surface = frames.surface.emplace_back(vertex_count);
+  for (std::size_t i = 0; i < vertex_count; ++i) surface[i] = at(i);
+  std::vector<std::vector<Vec3>>& lines = frames.tentacles.emplace_back(strands.size());
+  for (std::size_t s = 0; s < strands.size(); ++s)
+    for (int i : strands[s]) lines[s].push_back(at(static_cast<std::size_t>(i)));
+}
+
 }  // namespace jellysim::geometry
