@@ -1,7 +1,8 @@
 // Grid convergence of a swimming scene (issue 33, docs/convergence.md): the same scene, tank and
 // stroke on a sequence of grids, the markers following each grid, and the swimming figures'
 // observed order, Richardson extrapolate and Roache's GCI (studies/grid_convergence.hpp).
-// Works for a jellyfish (planar or axisymmetric water) and for a generated IB2d structure.
+// Works for a jellyfish (planar or axisymmetric water), for a generated IB2d structure and for the
+// 3D scene's shell bell (tank.geometry = "3d": grids NXxNYxNZ; docs/three-d.md).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -12,7 +13,9 @@
 #include "jellysim/experiments/experiment.hpp"
 #include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/render/plot.hpp"
+#include "jellysim/scene/jellyfish_3d_scene.hpp"
 #include "jellysim/studies/grid_convergence.hpp"
+#include "jellyfish_3d.hpp"
 
 namespace jellysim::experiments {
 namespace {
@@ -20,28 +23,38 @@ namespace {
 using config::format_number;
 
 struct Grid {
-  int nx = 0, ny = 0;
+  int nx = 0, ny = 0, nz = 0;  ///< nz: 0 in planar or axisymmetric water
 };
 
-/// "96x128,192x256": cells of each grid, coarsest first, each finer than the one before.
-std::vector<Grid> parse_grids(const std::string& list) {
+/// One "NXxNY" or "NXxNYxNZ" item.
+Grid parse_grid(const std::string& item, int axes, const std::string& what) {
+  const std::string form = axes == 3 ? "NXxNYxNZ (e.g. 32x48x32)" : "NXxNY (e.g. 96x128)";
+  std::array<int, 3> n{};
+  const char* p = item.data();
+  const char* last = item.data() + item.size();
+  for (int d = 0; d < axes; ++d) {
+    auto [end, ec] = std::from_chars(p, last, n[static_cast<std::size_t>(d)]);
+    const bool separator_next = d + 1 < axes;
+    if (ec != std::errc() || (separator_next && (end == last || (*end != 'x' && *end != 'X'))) ||
+        (!separator_next && end != last))
+      throw InputError(what + ": '" + item + "' is not " + form);
+    if (n[static_cast<std::size_t>(d)] < 4 || n[static_cast<std::size_t>(d)] > 4096)
+      throw InputError(what + ": '" + item + "' has cells outside [4, 4096]");
+    p = end + 1;
+  }
+  return {n[0], n[1], axes == 3 ? n[2] : 0};
+}
+
+/// "96x128,192x256" (or NXxNYxNZ items for the 3D scene, `axes` 3): cells of each grid, coarsest
+/// first, each finer than the one before.
+std::vector<Grid> parse_grids(const std::string& list, int axes) {
   const std::string what = "field 'grids' = \"" + list.substr(0, 80) + "\"";
   std::vector<Grid> grids;
   for (std::size_t at = 0; at <= list.size();) {
     const std::size_t end = std::min(list.find(',', at), list.size());
-    const std::string item = list.substr(at, end - at);
-    Grid g;
-    const char* p = item.data();
-    const char* last = item.data() + item.size();
-    auto [x_end, ex] = std::from_chars(p, last, g.nx);
-    if (ex != std::errc() || x_end == last || (*x_end != 'x' && *x_end != 'X'))
-      throw InputError(what + ": '" + item + "' is not NXxNY (e.g. 96x128)");
-    auto [y_end, ey] = std::from_chars(x_end + 1, last, g.ny);
-    if (ey != std::errc() || y_end != last) throw InputError(what + ": '" + item + "' is not NXxNY (e.g. 96x128)");
-    if (g.nx < 4 || g.ny < 4 || g.nx > 4096 || g.ny > 4096)
-      throw InputError(what + ": '" + item + "' has cells outside [4, 4096]");
-    if (!grids.empty() && !(g.nx > grids.back().nx && g.ny > grids.back().ny))
-      throw InputError(what + ": each grid must have more cells along x and y than the one before (coarsest first)");
+    const Grid g = parse_grid(list.substr(at, end - at), axes, what);
+    if (!grids.empty() && !(g.nx > grids.back().nx && g.ny > grids.back().ny && (axes < 3 || g.nz > grids.back().nz)))
+      throw InputError(what + ": each grid must have more cells along every axis than the one before (coarsest first)");
     grids.push_back(g);
     at = end + 1;
   }
@@ -49,12 +62,17 @@ std::vector<Grid> parse_grids(const std::string& list) {
   return grids;
 }
 
-/// What the runs swim: the first jellyfish, or a single generated IB2d structure.
-enum class Swimmer { jellyfish, structure };
+std::string grid_name(const Grid& g) {
+  return std::to_string(g.nx) + "x" + std::to_string(g.ny) + (g.nz > 0 ? "x" + std::to_string(g.nz) : "");
+}
+
+/// What the runs swim: the first jellyfish, a single generated IB2d structure, or the 3D shell bell.
+enum class Swimmer { jellyfish, structure, shell_3d };
 
 struct Study {
   std::vector<Grid> grids;
-  std::vector<jellyfish::SwimSettings> runs;  ///< one per grid
+  std::vector<jellyfish::SwimSettings> runs;  ///< one per grid (planar or axisymmetric water)
+  std::vector<scene::Swim3dSettings> runs_3d;  ///< one per grid (the 3D scene)
   Swimmer swimmer = Swimmer::jellyfish;
   int cycles = 5;
   int frames_per_cycle = 24;
@@ -99,11 +117,37 @@ void read_swimmer(const jellyfish::SwimSettings& s, Study& study) {
   study.bell_width_m = structure_width(s.structures[0]);
 }
 
+/// The 3D scene on each grid: the shell's edges follow the grid (jellyfish.shell_edge = 0: half a
+/// cell), frames_per_cycle frames a cycle.
+void read_study_3d(const config::Config& config, Study& study) {
+  if (config.number("jellyfish.shell_edge") > 0)
+    throw InputError("field 'jellyfish.shell_edge' = " + format_number(config.number("jellyfish.shell_edge")) +
+                     ": the convergence study lets the shell's edges follow the grid (half a cell); set it to 0");
+  study.swimmer = Swimmer::shell_3d;
+  for (const Grid& g : study.grids) {
+    config::Config c = config;
+    c.set("tank.cells=[" + std::to_string(g.nx) + ", " + std::to_string(g.ny) + ", " + std::to_string(g.nz) + "]");
+    c.set("output.frames_per_cycle=" + std::to_string(study.frames_per_cycle));
+    if (study.runs_3d.empty()) {
+      const scene::Swim3dSettings first = scene::read_swim3d_settings(c);
+      study.period_s = 1.0 / first.spec.bell.slice.frequency_hz;
+      study.bell_width_m = first.spec.bell.slice.diameter_m;
+    }
+    c.set("duration=" + io::format_double(study.cycles * study.period_s));
+    study.runs_3d.push_back(scene::read_swim3d_settings(c));
+  }
+}
+
 Study read_study(const config::Config& config) {
   Study study;
-  study.grids = parse_grids(config.string("grids"));
+  const bool three_d = scene::is_3d_scene(config);
+  study.grids = parse_grids(config.string("grids"), three_d ? 3 : 2);
   study.cycles = static_cast<int>(config.integer("cycles", 2, 100));
   study.frames_per_cycle = static_cast<int>(config.integer("frames_per_cycle", 4, 1000));
+  if (three_d) {
+    read_study_3d(config, study);
+    return study;
+  }
   refuse_fixed_spacing(config);
   for (const Grid& g : study.grids) {
     config::Config c = config;
@@ -174,15 +218,56 @@ Row run_grid(const Study& study, std::size_t k, const sim::ProgressCallback& pro
   return row;
 }
 
+/// The 3D scene's run on grid k: the bell's surface centroid along its first axis at each frame.
+Row run_grid_3d(const Study& study, std::size_t k, const io::OutputDir& out, const sim::ProgressCallback& progress,
+                std::string& failure) {
+  const scene::Swim3dSettings& s = study.runs_3d[k];
+  Row row;
+  row.grid = study.grids[k];
+  row.cells_across_bell = study.bell_width_m / (s.spec.tank_size_m[0] / s.spec.cells[0]);
+  const Recording3d rec = run_3d(s, out, progress);
+  failure = rec.failure;
+  row.markers = static_cast<double>(rec.markers);
+  row.steps = static_cast<double>(rec.timings.steps);
+  row.wall_seconds = rec.wall_seconds;
+  row.cycle_m = swim3d::summarize(rec.frames, study.frames_per_cycle).cycle_distance_m;
+  if (!row.cycle_m.empty()) row.first_cycle_m = row.cycle_m.front();
+  double later = 0.0;
+  for (std::size_t c = 1; c < row.cycle_m.size(); ++c) later += row.cycle_m[c];
+  row.distance_per_cycle_m = row.cycle_m.size() > 1 ? later / static_cast<double>(row.cycle_m.size() - 1) : NAN;
+  if (rec.frames.empty()) return row;
+  const swim3d::Frame3d& first = rec.frames.front();
+  const auto along = [&](const swim3d::Frame3d& f) {
+    double d = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) d += (f.centroid[c] - first.centroid[c]) * first.axis[c];
+    return d;
+  };
+  const double dt = study.period_s / study.frames_per_cycle;
+  row.min_volume_ratio = INFINITY;
+  for (std::size_t f = 0; f < rec.frames.size(); ++f) {
+    row.min_volume_ratio = std::min(row.min_volume_ratio, rec.frames[f].cavity_volume_m3 / first.cavity_volume_m3);
+    if (f > 0) row.peak_speed_m_per_s = std::max(row.peak_speed_m_per_s, std::abs(along(rec.frames[f]) - along(rec.frames[f - 1])) / dt);
+  }
+  return row;
+}
+
 std::string cell(double v) { return std::isfinite(v) ? io::format_double(v) : std::string(); }
 
-io::CsvWriter table(const std::vector<Row>& rows) {
-  io::CsvWriter csv({"cells_x", "cells_y", "cells_across_bell", "markers", "first_cycle_m", "distance_per_cycle_m",
-                     "min_volume_ratio", "peak_speed_m_per_s", "steps", "wall_seconds"});
-  for (const Row& r : rows)
-    csv.text_row({std::to_string(r.grid.nx), std::to_string(r.grid.ny), cell(r.cells_across_bell), cell(r.markers),
-                  cell(r.first_cycle_m), cell(r.distance_per_cycle_m), cell(r.min_volume_ratio),
-                  cell(r.peak_speed_m_per_s), cell(r.steps), cell(r.wall_seconds)});
+/// convergence.csv; the 3D scene's grids add cells_z (after the 2D columns, which keep their order).
+io::CsvWriter table(const std::vector<Row>& rows, bool three_d) {
+  std::vector<std::string> columns{"cells_x", "cells_y", "cells_across_bell", "markers", "first_cycle_m",
+                                   "distance_per_cycle_m", "min_volume_ratio", "peak_speed_m_per_s", "steps",
+                                   "wall_seconds"};
+  if (three_d) columns.push_back("cells_z");
+  io::CsvWriter csv(columns);
+  for (const Row& r : rows) {
+    std::vector<std::string> values{std::to_string(r.grid.nx), std::to_string(r.grid.ny), cell(r.cells_across_bell),
+                                    cell(r.markers), cell(r.first_cycle_m), cell(r.distance_per_cycle_m),
+                                    cell(r.min_volume_ratio), cell(r.peak_speed_m_per_s), cell(r.steps),
+                                    cell(r.wall_seconds)};
+    if (three_d) values.push_back(std::to_string(r.grid.nz));
+    csv.text_row(values);
+  }
   return csv;
 }
 
@@ -258,7 +343,9 @@ nlohmann::ordered_json figures(const std::vector<Row>& rows, const Study& study)
   auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(); };
   nlohmann::ordered_json fig;
   fig["units"] = {{"length", "m"}, {"speed", "m/s"}, {"time", "s"}};
-  fig["swimmer"] = study.swimmer == Swimmer::jellyfish ? "jellyfish" : "ib2d structure";
+  fig["swimmer"] = study.swimmer == Swimmer::jellyfish   ? "jellyfish"
+                   : study.swimmer == Swimmer::structure ? "ib2d structure"
+                                                         : "3d shell bell";
   fig["cycles"] = study.cycles;
   fig["bell_width_m"] = study.bell_width_m;
   fig["observed_order"] = opt(d.observed_order);
@@ -272,9 +359,11 @@ nlohmann::ordered_json figures(const std::vector<Row>& rows, const Study& study)
   for (const Figure& f : kFigures) each[f.name] = describe(analyse(rows, f.value, study));
   fig["figures"] = each;
   nlohmann::ordered_json grids = nlohmann::ordered_json::array();
-  for (const Row& r : rows)
-    grids.push_back({{"cells", {r.grid.nx, r.grid.ny}}, {"cycle_displacements_m", r.cycle_m},
-                     {"wall_seconds", r.wall_seconds}});
+  for (const Row& r : rows) {
+    nlohmann::ordered_json cells = {r.grid.nx, r.grid.ny};
+    if (r.grid.nz > 0) cells.push_back(r.grid.nz);
+    grids.push_back({{"cells", cells}, {"cycle_displacements_m", r.cycle_m}, {"wall_seconds", r.wall_seconds}});
+  }
   fig["grids"] = grids;
   return fig;
 }
@@ -286,10 +375,10 @@ std::function<Outcome(const io::OutputDir&)> prepare_convergence(const Context& 
     std::string failure;
     for (std::size_t k = 0; k < study.grids.size() && failure.empty(); ++k) {
       std::string why;
-      rows.push_back(run_grid(study, k, ctx.progress, why));
-      if (!why.empty())
-        failure = "grid " + std::to_string(study.grids[k].nx) + "x" + std::to_string(study.grids[k].ny) + ": " + why;
-      out.write_text("convergence.csv", table(rows).text());  // each grid as it finishes
+      const bool three_d = study.swimmer == Swimmer::shell_3d;
+      rows.push_back(three_d ? run_grid_3d(study, k, out, ctx.progress, why) : run_grid(study, k, ctx.progress, why));
+      if (!why.empty()) failure = "grid " + grid_name(study.grids[k]) + ": " + why;
+      out.write_text("convergence.csv", table(rows, three_d).text());  // each grid as it finishes
     }
     std::vector<Row> whole = rows;  // the grids whose runs completed
     if (!failure.empty()) whole.pop_back();
@@ -303,8 +392,9 @@ std::function<Outcome(const io::OutputDir&)> prepare_convergence(const Context& 
 
 Experiment convergence_experiment() {
   Experiment e{"convergence",
-               "Grid convergence of a swimming scene: each grid's distance per cycle, first cycle, volume ratio and "
-               "peak speed; observed order, Richardson extrapolate, Roache's GCI (convergence.csv, convergence.png)",
+               "Grid convergence of a swimming scene (planar, axisymmetric or 3D water): each grid's distance per cycle, "
+               "first cycle, volume ratio and peak speed; observed order, Richardson extrapolate, Roache's GCI "
+               "(convergence.csv, convergence.png)",
                "experiments/convergence.toml", prepare_convergence};
   e.base_path = "scenes/jellyfish.toml";
   e.shorthands = {"grids", "cycles"};

@@ -238,3 +238,46 @@ TEST(Jellyfish3dCli, SlowComparesWithTheAxisymmetricSolverAtEqualResolution) {
   EXPECT_NEAR(first_axi, 20.29e-3, 0.2e-3);  // measured 20.286 mm
   fs::remove_all(dir);
 }
+
+// `experiment convergence` on the 3D scene: NXxNYxNZ grids, the shell's edges following each grid.
+// A smoke test of the command on two very coarse grids of the tiny tank without tentacles (3.2 and
+// 4.8 cells across the bell, two cycles, 2.5 s: Release pass only); the study itself is
+// docs/three-d.md's "The bell's grid convergence".
+TEST(Jellyfish3dCli, SlowConvergenceStudyRunsTheShellOnEachGrid) {
+  const fs::path dir = fresh("convergence");
+  const cli::CliResult r = cli::run_jellysim("experiment convergence " + kScene3d +
+                                             " --grids 8x8x8,12x12x12 --cycles 2 --set frames_per_cycle=4"
+                                             " --set tank.size=[0.1,0.1,0.1] --set jellyfish.position=[0,0.03]"
+                                             " --set jellyfish.tentacle_count=0 --quiet --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string header;
+  const auto rows = read_rows(cli::read_text_file(dir / "convergence.csv"), header);
+  EXPECT_EQ(header, "cells_x,cells_y,cells_across_bell,markers,first_cycle_m,distance_per_cycle_m,min_volume_ratio,"
+                    "peak_speed_m_per_s,steps,wall_seconds,cells_z");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_NEAR(rows[0][2], 3.2, 1e-12);
+  EXPECT_NEAR(rows[1][2], 4.8, 1e-12);
+  EXPECT_EQ(rows[1][10], 12.0);
+  EXPECT_GT(rows[1][3], rows[0][3]);  // more markers on the finer grid: the edges follow it
+  const auto s = nlohmann::json::parse(cli::read_text_file(dir / "summary.json"));
+  EXPECT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["swimmer"], "3d shell bell");
+  EXPECT_EQ(s["grids"][1]["cells"], nlohmann::json::array({12, 12, 12}));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto& cycles = s["grids"][k]["cycle_displacements_m"];
+    ASSERT_EQ(cycles.size(), 2u);
+    EXPECT_DOUBLE_EQ(cycles[0].get<double>(), rows[k][4]);  // first_cycle_m
+    EXPECT_DOUBLE_EQ(cycles[1].get<double>(), rows[k][5]);  // the mean of cycles 2 … 2
+  }
+  EXPECT_NEAR(s["relative_change_finest"].get<double>(), std::abs(rows[1][5] - rows[0][5]) / std::abs(rows[1][5]), 1e-12);
+  fs::remove_all(dir);
+}
+
+TEST(Jellyfish3dCli, ConvergenceStudyRefusesGridsOfTheWrongShapeAndFixedEdges) {
+  const fs::path dir = fresh("convergence_bad");
+  const std::string study = "experiment convergence " + kScene3d;
+  cli::expect_refused(study + " --grids 16x24,32x48", "'16x24' is not NXxNYxNZ", dir);
+  cli::expect_refused(study + " --grids 16x24x16,32x48x12", "coarsest first", dir);
+  cli::expect_refused(study + " --grids 16x24x16,32x48x32 --set jellyfish.shell_edge=0.002", "field 'jellyfish.shell_edge'",
+                      dir);
+}
