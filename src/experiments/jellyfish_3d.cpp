@@ -2,7 +2,8 @@
 // scene"): the shell bell in 3D water (swim3d::Swimmer3d) frame by frame, with metrics.csv (the
 // bell's centroid, velocity, axis, heading, tilt and cavity volume per frame), summary.json (the
 // swimming per cycle, the grid, the cost) and, with output.vtk, the flow of every frame
-// (frames/field_NNNNNN.vti and jellyfish.pvd, named as the 2D run's) and the bell's surface
+// (frames/field_NNNNNN.vti and jellyfish.pvd, named as the 2D run's), the markers with their
+// velocities and forces (frames/bell_NNNNNN.vtp, the series' second part) and the bell's surface
 // (frames/bell_NNNNNN.obj). A failure (the flow no longer
 // finite, GMRES not converging) or SIGINT/SIGTERM ends the run with the frames recorded so far
 // written and the time and step in the summary's failure, as the 2D run does (docs/architecture.md).
@@ -52,9 +53,28 @@ geometry::Mesh bell_surface(const shell::TriangleMesh& surface, const ib3d::Mark
   return m;
 }
 
+/// The swimmer's markers for ParaView: the bell's surface triangles and the tentacles' polylines
+/// over every marker, with each marker's velocity (m/s) and the force it gave the water (N).
+io::VtkSurface3d bell_polydata(const swim3d::Swimmer3d& swimmer) {
+  const ib3d::Markers3d& m = swimmer.markers();
+  io::VtkSurface3d d;
+  d.points_m = m.position;
+  d.triangles = swimmer.bell().surface().mesh.triangles;
+  for (const std::vector<int>& rod : swimmer.bell().tentacles())
+    if (rod.size() >= 2) d.polylines.push_back(rod);
+  io::VtkArray velocity{"velocity", 3, {}}, force{"force", 3, {}};
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    velocity.values.insert(velocity.values.end(), m.velocity[k].begin(), m.velocity[k].end());
+    force.values.insert(force.values.end(), m.force[k].begin(), m.force[k].end());
+  }
+  d.point_data = {std::move(velocity), std::move(force)};
+  return d;
+}
+
 /// The flow and the bell of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the
-/// solved part of the tank (the quarter or half tank's cells), with the time series jellyfish.pvd,
-/// and frames/bell_NNNNNN.obj, the bell's surface (the whole bell; a numbered file series).
+/// solved part of the tank (the quarter or half tank's cells), and frames/bell_NNNNNN.vtp, every
+/// marker (the whole bell and its tentacles), the two parts ("field", "bell") of the time series
+/// jellyfish.pvd; and frames/bell_NNNNNN.obj, the bell's surface (a numbered file series).
 class FrameFiles3d {
  public:
   explicit FrameFiles3d(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
@@ -65,6 +85,9 @@ class FrameFiles3d {
     const std::string field = std::string("field_") + id + ".vti";
     io::write_streamed(frames_, field, [&](std::ostream& o) { io::write_flow_vti(o, swimmer.fluid().state()); });
     entries_.push_back({swimmer.time_s(), "frames/" + field, 0, "field"});
+    const std::string bell = std::string("bell_") + id + ".vtp";
+    io::write_streamed(frames_, bell, [&](std::ostream& o) { io::write_surface_vtp(o, bell_polydata(swimmer)); });
+    entries_.push_back({swimmer.time_s(), "frames/" + bell, 1, "bell"});
     io::write_streamed(out_, "jellyfish.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
     const std::string comment = "the bell at t = " + io::format_double(swimmer.time_s()) + " s";
     frames_.write_text(std::string("bell_") + id + ".obj",

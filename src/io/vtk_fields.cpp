@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <ostream>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -266,6 +267,59 @@ void write_polydata_vtp(std::ostream& out, const VtkPolyData& d) {
       << "      <CellData>\n" << cell_data << "      </CellData>\n"
       << "      <Points>\n" << points << "      </Points>\n"
       << "      <" << cell_kind << ">\n" << topology << "      </" << cell_kind << ">\n"
+      << "    </Piece>\n  </PolyData>\n";
+  arrays.write(out);
+  out << "</VTKFile>\n";
+}
+
+namespace {
+
+/// Cells as VTK's connectivity and offsets arrays (a point outside [0, points) is refused).
+struct CellArrays {
+  std::vector<std::int64_t> connectivity, offsets;
+  void add(std::span<const int> cell, std::size_t points) {
+    for (int p : cell) {
+      if (p < 0 || static_cast<std::size_t>(p) >= points)
+        throw std::invalid_argument("VTK cell refers to point " + std::to_string(p) + " of " + std::to_string(points));
+      connectivity.push_back(p);
+    }
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+  }
+  std::string elements(AppendedArrays& arrays, const std::string& in) const {
+    return arrays.element(in, "Int64", "connectivity", 1, connectivity.data(), connectivity.size() * 8) +
+           arrays.element(in, "Int64", "offsets", 1, offsets.data(), offsets.size() * 8);
+  }
+};
+
+}  // namespace
+
+void write_surface_vtp(std::ostream& out, const VtkSurface3d& s) {
+  const std::size_t n = s.points_m.size();
+  check_sizes(s.point_data, n, "points");
+  CellArrays polys, lines;
+  for (const auto& t : s.triangles) polys.add(t, n);
+  for (const auto& l : s.polylines) {
+    if (l.size() < 2) throw std::invalid_argument("VTK polyline of " + std::to_string(l.size()) + " point(s)");
+    lines.add(l, n);
+  }
+  AppendedArrays arrays;
+  const std::string in = "        ";
+  std::vector<double> xyz;
+  xyz.reserve(3 * n);
+  for (const fluid3d::Vec3& p : s.points_m) xyz.insert(xyz.end(), p.begin(), p.end());
+  const std::string points = arrays.element(in, "Float64", "", 3, xyz.data(), xyz.size() * 8);
+  std::string point_data;
+  for (const VtkArray& a : s.point_data) point_data += arrays.element(in, a);
+  const std::string poly_cells = polys.elements(arrays, in), line_cells = lines.elements(arrays, in);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PolyData\"" << kFileAttributes << ">\n"
+      << "  <PolyData>\n"
+      << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << s.polylines.size()
+      << "\" NumberOfStrips=\"0\" NumberOfPolys=\"" << s.triangles.size() << "\">\n"
+      << "      <PointData>\n" << point_data << "      </PointData>\n"
+      << "      <Points>\n" << points << "      </Points>\n"
+      << "      <Lines>\n" << line_cells << "      </Lines>\n"
+      << "      <Polys>\n" << poly_cells << "      </Polys>\n"
       << "    </Piece>\n  </PolyData>\n";
   arrays.write(out);
   out << "</VTKFile>\n";

@@ -60,8 +60,18 @@ TEST(Jellyfish3dCli, SimulateWritesMetricsSummaryAndTheFlowOfEachFrame) {
       cli::run_jellysim("simulate " + kTiny + " --set output.vtk=true --set coupling.threads=1 --quiet --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"metrics.csv", "summary.json", "jellyfish.pvd", "frames/field_000000.vti", "frames/field_000001.vti",
-                        "frames/bell_000000.obj"})
+                        "frames/bell_000000.obj", "frames/bell_000001.vtp"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
+  // ParaView's series: the flow and every marker (the surface's triangles, the tentacles' lines,
+  // each marker's velocity and force), two parts a frame.
+  const std::string pvd = cli::read_text_file(dir / "jellyfish.pvd");
+  EXPECT_NE(pvd.find("part=\"1\" name=\"bell\" file=\"frames/bell_000001.vtp\""), std::string::npos) << pvd;
+  const std::string vtp = cli::read_text_file(dir / "frames" / "bell_000001.vtp");
+  EXPECT_NE(vtp.find("NumberOfPoints=\"433\" NumberOfVerts=\"0\" NumberOfLines=\"12\" NumberOfStrips=\"0\" "
+                     "NumberOfPolys=\"774\""),
+            std::string::npos);
+  for (const char* array : {"Name=\"velocity\" NumberOfComponents=\"3\"", "Name=\"force\" NumberOfComponents=\"3\""})
+    EXPECT_NE(vtp.find(array), std::string::npos) << array;
   // The bell's surface: a vertex and a normal per shell vertex (measured, half-cell edges: 409 of
   // the 433 markers, the other 24 the twelve tentacles' nodes; 774 triangles).
   std::istringstream obj(cli::read_text_file(dir / "frames" / "bell_000001.obj"));

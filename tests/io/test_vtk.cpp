@@ -36,10 +36,11 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 /// Decodes array `name` of a file as ParaView does: its offset into the appended section, VTK's
 /// compressed-data header (block count, block size, partial last block, compressed sizes), the
-/// zlib blocks. An empty name finds the first array without one (the points).
+/// zlib blocks. An empty name finds the first array without one (the points); `from`: the first
+/// such array after that position.
 template <class T>
-std::vector<T> read_array(const std::string& file, const std::string& name) {
-  const std::size_t element = name.empty() ? file.find("<Points>") : file.find("Name=\"" + name + "\"");
+std::vector<T> read_array(const std::string& file, const std::string& name, std::size_t from = 0) {
+  const std::size_t element = name.empty() ? file.find("<Points>", from) : file.find("Name=\"" + name + "\"", from);
   if (element == std::string::npos) throw std::runtime_error("no array " + name);
   const std::size_t offset = std::stoull(file.substr(file.find("offset=\"", element) + 8));
   const std::size_t base = file.find('_', file.find("<AppendedData encoding=\"raw\">")) + 1;
@@ -117,6 +118,34 @@ TEST(VtkOutput, PolyDataCarriesNamedPointAndCellData) {
   EXPECT_EQ(read_array<std::int32_t>(text, "muscle"), (std::vector<std::int32_t>{0, 1}));
   d.cell_data.front().values.pop_back();
   EXPECT_THROW(write_polydata_vtp(out, d), std::invalid_argument);  // one value short
+}
+
+// The 3D swimmer's markers (issue 40): a tetrahedron's two faces and a polyline hanging from it.
+TEST(VtkOutput, SurfacePolyDataHasTrianglesLinesAndPointData) {
+  VtkSurface3d d;
+  d.points_m = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {0, 0, -2}};
+  d.triangles = {{0, 1, 2}, {0, 3, 1}};
+  d.polylines = {{0, 4, 5}};
+  d.point_data.push_back({"force", 3, std::vector<double>(18, 0.5)});
+  std::ostringstream out;
+  write_surface_vtp(out, d);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("NumberOfPoints=\"6\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" "
+                      "NumberOfPolys=\"2\""),
+            std::string::npos);
+  EXPECT_EQ(read_array<double>(text, "")[11], 1.0);  // the fourth point's z
+  // The cells' connectivity and offsets: the lines' first (VTK's order of sections), then the polygons'.
+  const std::size_t polys = text.find("<Polys>");
+  EXPECT_EQ(read_array<std::int64_t>(text, "connectivity"), (std::vector<std::int64_t>{0, 4, 5}));
+  EXPECT_EQ(read_array<std::int64_t>(text, "offsets"), (std::vector<std::int64_t>{3}));
+  EXPECT_EQ(read_array<std::int64_t>(text, "connectivity", polys), (std::vector<std::int64_t>{0, 1, 2, 0, 3, 1}));
+  EXPECT_EQ(read_array<std::int64_t>(text, "offsets", polys), (std::vector<std::int64_t>{3, 6}));
+  EXPECT_EQ(read_array<double>(text, "force").size(), 18u);
+  d.triangles.push_back({0, 1, 6});
+  EXPECT_THROW(write_surface_vtp(out, d), std::invalid_argument);  // no point 6
+  d.triangles.pop_back();
+  d.polylines.push_back({2});
+  EXPECT_THROW(write_surface_vtp(out, d), std::invalid_argument);  // a line of one point
 }
 
 TEST(VtkOutput, TimeSeriesListsEveryFrameWithNamedParts) {

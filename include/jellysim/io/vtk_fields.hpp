@@ -54,6 +54,19 @@ void write_flow_vti(const std::filesystem::path& path, const fluid3d::FlowState3
 void write_polydata_vtp(std::ostream& out, const VtkPolyData& data);
 void write_polydata_vtp(const std::filesystem::path& path, const VtkPolyData& data);
 
+/// A surface in 3D: triangles and polylines over one set of points, with point data (the 3D
+/// swimmer's shell bell and its tentacles, issue 40).
+struct VtkSurface3d {
+  std::vector<fluid3d::Vec3> points_m;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::vector<int>> polylines;  ///< each at least two points
+  std::vector<VtkArray> point_data;
+};
+
+/// Writes the surface as VTK XML PolyData (Polys and Lines); throws std::invalid_argument when an
+/// array's size does not match the points, or a cell names a point that is not there.
+void write_surface_vtp(std::ostream& out, const VtkSurface3d& surface);
+
 /// Points (z = 0) as vertices with an `id` array (their index).
 void write_points_vtp(std::ostream& out, const std::vector<Vec2>& points_m);
 void write_points_vtp(const std::filesystem::path& path, const std::vector<Vec2>& points_m);
