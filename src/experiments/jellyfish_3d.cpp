@@ -71,6 +71,13 @@ io::VtkSurface3d bell_polydata(const swim3d::Swimmer3d& swimmer) {
   return d;
 }
 
+/// A frame's number in file names: six digits, 000042.
+std::string frame_id(std::size_t k) {
+  char id[24];
+  std::snprintf(id, sizeof id, "%06zu", k);
+  return id;
+}
+
 /// The flow and the bell of each frame for ParaView (output.vtk): frames/field_NNNNNN.vti, the
 /// solved part of the tank (the quarter or half tank's cells), and frames/bell_NNNNNN.vtp, every
 /// marker (the whole bell and its tentacles), the two parts ("field", "bell") of the time series
@@ -80,18 +87,24 @@ class FrameFiles3d {
   explicit FrameFiles3d(const io::OutputDir& out) : out_(out), frames_(out.subdirectory("frames")) {}
 
   void write(const swim3d::Swimmer3d& swimmer, std::size_t index) {
-    char id[16];
-    std::snprintf(id, sizeof id, "%06zu", index);
-    const std::string field = std::string("field_") + id + ".vti";
+    const std::string id = frame_id(index);
+    const std::string field = "field_" + id + ".vti";
     io::write_streamed(frames_, field, [&](std::ostream& o) { io::write_flow_vti(o, swimmer.fluid().state()); });
     entries_.push_back({swimmer.time_s(), "frames/" + field, 0, "field"});
-    const std::string bell = std::string("bell_") + id + ".vtp";
+    const std::string bell = "bell_" + id + ".vtp";
     io::write_streamed(frames_, bell, [&](std::ostream& o) { io::write_surface_vtp(o, bell_polydata(swimmer)); });
     entries_.push_back({swimmer.time_s(), "frames/" + bell, 1, "bell"});
     io::write_streamed(out_, "jellyfish.pvd", [&](std::ostream& o) { io::write_pvd(o, entries_); });
     const std::string comment = "the bell at t = " + io::format_double(swimmer.time_s()) + " s";
-    frames_.write_text(std::string("bell_") + id + ".obj",
+    frames_.write_text("bell_" + id + ".obj",
                        io::obj_text(bell_surface(swimmer.bell().surface().mesh, swimmer.markers()), comment));
+  }
+  /// A resumed run: the frames written before its checkpoint are in the .pvd collection.
+  void continue_after(const std::vector<swim3d::Frame3d>& frames) {
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      entries_.push_back({frames[k].time_s, "frames/field_" + frame_id(k) + ".vti", 0, "field"});
+      entries_.push_back({frames[k].time_s, "frames/bell_" + frame_id(k) + ".vtp", 1, "bell"});
+    }
   }
 
  private:
@@ -140,11 +153,89 @@ std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::strin
   }
 }
 
+/// Recorded frames in a checkpoint (both directions).
+void archive_frames_3d(core::StateArchive& a, std::vector<swim3d::Frame3d>& frames) {
+  const core::StateArchive::Scope scope(a, "recording");
+  std::size_t count = frames.size();
+  a.value("count", count);
+  if (a.is_restoring()) {
+    if (count > a.entries().size()) throw core::StateMismatch("checkpoint entry 'recording.count' is damaged");
+    frames.assign(count, {});
+  }
+  for (std::size_t f = 0; f < count; ++f) {
+    const core::StateArchive::Scope frame(a, std::to_string(f));
+    swim3d::Frame3d& s = frames[f];
+    a.value("time", s.time_s);
+    a.vector("points", s.points);
+    a.value("centroid", s.centroid);
+    a.value("velocity", s.velocity);
+    a.value("axis", s.axis);
+    a.value("heading", s.heading_deg);
+    a.value("tilt", s.tilt_deg);
+    a.value("volume", s.cavity_volume_m3);
+    a.value("steps", s.steps);
+    a.value("krylov_iterations", s.krylov_iterations);
+  }
+}
+
+/// The most bytes a 3D checkpoint's state can hold: twice the water's estimate, the markers' four
+/// arrays and every frame's points, with room for the entries' names.
+double most_state_bytes_3d(const scene::Swim3dSettings& s, std::size_t markers) {
+  const double per_frame = 24.0 * static_cast<double>(markers) + 1024.0;
+  return 2.0 * (s.estimated_memory_bytes + 96.0 * static_cast<double>(markers) +
+                static_cast<double>(s.frames + 1) * per_frame) + 65536.0;
+}
+
+/// Checkpoints of a 3D run (issue 23's file and rules, as run_swim's): written at the first frame
+/// at or after every `every_s`, holding the swimmer and the frames so far.
+class Checkpoints3d {
+ public:
+  Checkpoints3d(const Checkpointing* c, const io::OutputDir& out)
+      : c_(c), out_(out), every_(c ? c->how.every_s : 0.0), next_(every_ > 0 ? next_checkpoint_time(0.0, every_) : 0.0) {}
+  /// A resumed run: the swimmer and the frames as the checkpoint has them.
+  void restore(swim3d::Swimmer3d& swimmer, const scene::Swim3dSettings& settings, std::vector<swim3d::Frame3d>& frames) {
+    if (!c_ || !c_->resume) return;
+    core::StateArchive state = core::StateArchive::restoring(
+        io::read_checkpoint_state(c_->how, most_state_bytes_3d(settings, swimmer.markers().size())));
+    swimmer.archive(state);
+    archive_frames_3d(state, frames);
+    state.check_all_read();
+    next_ = next_checkpoint_time(swimmer.time_s(), every_);
+  }
+  /// After a frame is recorded: a checkpoint when one is due.
+  void after_frame(swim3d::Swimmer3d& swimmer, std::vector<swim3d::Frame3d>& frames) {
+    if (every_ > 0 && swimmer.time_s() >= next_ * (1.0 - 1e-12)) write(swimmer, frames);
+  }
+  /// At the end of a whole run: the run's end kept (`run` renders next) or the checkpoint removed.
+  void finish(swim3d::Swimmer3d& swimmer, std::vector<swim3d::Frame3d>& frames) {
+    if (every_ <= 0) return;
+    if (c_->keep_when_whole) write(swimmer, frames);
+    else out_.remove(io::kCheckpointName);
+  }
+
+ private:
+  void write(swim3d::Swimmer3d& swimmer, std::vector<swim3d::Frame3d>& frames) {
+    core::StateArchive state = core::StateArchive::saving();
+    swimmer.archive(state);
+    archive_frames_3d(state, frames);
+    io::Checkpoint c = c_->how;
+    c.inputs.clear();  // the 3D scene reads no files besides itself
+    c.state = state.take_entries();
+    io::write_checkpoint(out_, c);
+    next_ = next_checkpoint_time(swimmer.time_s(), every_);
+  }
+
+  const Checkpointing* c_;
+  const io::OutputDir& out_;
+  double every_;
+  double next_;  ///< simulated time of the next checkpoint
+};
+
 }  // namespace
 
 /// Runs the frames, writing the flow and the bell of each when asked; progress after every frame.
 Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out,
-                   const sim::ProgressCallback& progress) {
+                   const sim::ProgressCallback& progress, const Checkpointing* checkpoints) {
   const auto start = std::chrono::steady_clock::now();
   Recording3d rec;
   const auto swimmer = [&] {
@@ -161,17 +252,22 @@ Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& o
   rec.surface_vertices = swimmer->bell().surface().mesh.vertices.size();
   std::optional<FrameFiles3d> files;
   if (settings.vtk) files.emplace(out);
+  Checkpoints3d saved(checkpoints, out);
+  saved.restore(*swimmer, settings, rec.frames);
+  if (files) files->continue_after(rec.frames);
   const auto record = [&](swim3d::Frame3d f) {
     if (files) files->write(*swimmer, rec.frames.size());
     rec.frames.push_back(std::move(f));
+    saved.after_frame(*swimmer, rec.frames);
   };
-  record(swimmer->frame());
-  for (std::int64_t k = 0; k < settings.frames; ++k) {
+  if (rec.frames.empty()) record(swimmer->frame());
+  for (auto k = static_cast<std::int64_t>(rec.frames.size()) - 1; k < settings.frames; ++k) {
     std::optional<swim3d::Frame3d> f = next_frame(*swimmer, rec.failure);
     if (!f) break;
     record(std::move(*f));
     if (progress) progress(swimmer->time_s(), settings.end_time_s(), swimmer->timings().steps);
   }
+  if (rec.failure.empty()) saved.finish(*swimmer, rec.frames);
   rec.timings = swimmer->timings();
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return rec;
@@ -292,12 +388,11 @@ render::PipelineSettings read_pipeline_3d(const Context& ctx, const scene::Swim3
 
 std::function<Outcome(const io::OutputDir&)> prepare_animation_3d(const Context& ctx) {
   const scene::Swim3dSettings settings = scene::read_swim3d_settings(ctx.config);
-  if (ctx.checkpoints)
-    throw InputError("--checkpoint-every / --resume: the 3D scene (tank.geometry = \"3d\") has no checkpoints yet");
   const render::PipelineSettings pipeline = read_pipeline_3d(ctx, settings);
   if (ctx.progress) print_estimate(settings);
   return [settings, pipeline, ctx](const io::OutputDir& out) {
-    const Recording3d rec = run_3d(settings, out, ctx.progress);
+    // With checkpoints, the simulation's end stays checkpointed until the animation is whole.
+    const Recording3d rec = run_3d(settings, out, ctx.progress, ctx.checkpoints.get());
     write_metrics_3d(out, rec.frames);
     nlohmann::ordered_json figures = figures_3d(settings, rec);
     std::string failure = rec.failure;
@@ -314,17 +409,16 @@ std::function<Outcome(const io::OutputDir&)> prepare_animation_3d(const Context&
                   std::to_string(anim.frames) + " of " + std::to_string(rec.frames.size()) + " frames";
     }
     write_summary(out, "run", ctx.config, figures, failure);
+    if (ctx.checkpoints && failure.empty()) out.remove(io::kCheckpointName);  // whole: nothing to resume
     return Outcome{failure};
   };
 }
 
 std::function<Outcome(const io::OutputDir&)> prepare_jellyfish_3d(const Context& ctx) {
   const scene::Swim3dSettings settings = scene::read_swim3d_settings(ctx.config);
-  if (ctx.checkpoints)
-    throw InputError("--checkpoint-every / --resume: the 3D scene (tank.geometry = \"3d\") has no checkpoints yet");
   if (ctx.progress) print_estimate(settings);
   return [settings, ctx](const io::OutputDir& out) {
-    const Recording3d rec = run_3d(settings, out, ctx.progress);
+    const Recording3d rec = run_3d(settings, out, ctx.progress, ctx.checkpoints.get());
     write_metrics_3d(out, rec.frames);
     write_summary(out, "simulate", ctx.config, figures_3d(settings, rec), rec.failure);
     return Outcome{rec.failure};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "jellysim/experiments/experiment.hpp"
+#include "jellysim/experiments/jellyfish_runs.hpp"
 #include "jellysim/scene/jellyfish_3d_scene.hpp"
 
 namespace jellysim::experiments {
@@ -27,8 +28,10 @@ struct Recording3d {
 
 /// Runs the scene's frames (the first at t = 0), writing the flow and the bell's surface of each into
 /// `out` when the settings ask (output.vtk); progress after every frame. A failure or SIGINT ends it
-/// early, named.
-Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out, const sim::ProgressCallback& progress);
+/// early, named. With `checkpoints`, writes checkpoints or continues from one (issue 23's rules, as
+/// run_swim's): the outputs are those of the uninterrupted run, byte for byte.
+Recording3d run_3d(const scene::Swim3dSettings& settings, const io::OutputDir& out, const sim::ProgressCallback& progress,
+                   const Checkpointing* checkpoints = nullptr);
 
 /// Reads and validates the 3D scene (InputError before anything is written); the run writes
 /// metrics.csv, summary.json and, with output.vtk, the flow of every frame.

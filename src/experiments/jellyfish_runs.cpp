@@ -232,10 +232,9 @@ void restore_checkpoint(const io::Checkpoint& c, const jellyfish::SwimSettings& 
   state.check_all_read();
 }
 
-/// When the next checkpoint is due: the first multiple of `every` after t.
-double next_checkpoint_time(double t, double every) { return (std::floor(t / every + 1e-9) + 1.0) * every; }
-
 }  // namespace
+
+double next_checkpoint_time(double t, double every) { return (std::floor(t / every + 1e-9) + 1.0) * every; }
 
 SwimOutputOptions read_output_options(const config::Config& c) {
   const scene::Reader r(c, scene::jellyfish_scene());

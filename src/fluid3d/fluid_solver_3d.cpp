@@ -77,6 +77,17 @@ class CpuFluidSolver3d final : public FluidSolver3d {
   PressureReport3d last_pressure_report() const override { return report_; }
   StepTimings3d last_timings() const override { return timings_; }
   const FluidSettings3d& settings() const override { return settings_; }
+  void archive(core::StateArchive& a) override {
+    const core::StateArchive::Scope scope(a, "fluid3d");
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
+    for (std::size_t c = 0; c < 3; ++c) {
+      a.values(std::string("velocity_") + kAxis[c], std::span<double>(state_.velocity.c[c]));
+      a.values(std::string("body_acceleration_") + kAxis[c], std::span<double>(body_.c[c]));
+    }
+    a.values("pressure", std::span<double>(state_.pressure));
+    a.values("potential", std::span<double>(phi_));  // an iterative pressure solver's first guess
+    a.value("time", state_.time_s);
+  }
   double stable_time_step() const override;
   void step(double dt_s) override;
 

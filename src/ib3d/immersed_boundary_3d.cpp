@@ -82,6 +82,17 @@ ImmersedBoundary3d::ImmersedBoundary3d(fluid3d::FluidSolver3d& fluid, Markers3d&
   markers_.force.resize(markers_.size(), Vec3{});
 }
 
+void ImmersedBoundary3d::archive(core::StateArchive& a) {
+  const core::StateArchive::Scope scope(a, "ib3d");
+  a.value("time", time_s_);
+  std::vector<double> increment(last_increment_.data(), last_increment_.data() + last_increment_.size());
+  a.vector("last_increment", increment);
+  if (a.is_restoring()) last_increment_ = Eigen::Map<const Eigen::VectorXd>(increment.data(), static_cast<Eigen::Index>(increment.size()));
+  a.values("marker_position", std::span<Vec3>(markers_.position));
+  a.values("marker_velocity", std::span<Vec3>(markers_.velocity));
+  a.values("marker_force", std::span<Vec3>(markers_.force));
+}
+
 double ImmersedBoundary3d::self_mobility() const {
   const double overlap = self_overlap(settings_.kernel);
   return (2.0 / 3.0) * overlap * overlap * overlap /

@@ -182,6 +182,16 @@ bool Swimmer3d::step_toward_frame() {
   return true;
 }
 
+void Swimmer3d::archive(core::StateArchive& a) {
+  const core::StateArchive::Scope scope(a, "swimmer3d");
+  fluid_->archive(a);
+  coupling_->archive(a);
+  a.value("frame_index", frame_index_);
+  a.value("krylov_since_frame", krylov_since_frame_);
+  a.value("frame_reached", frame_reached_);
+  a.value("timings", timings_);
+}
+
 Frame3d Swimmer3d::advance_frame() {
   while (!step_toward_frame()) {
   }

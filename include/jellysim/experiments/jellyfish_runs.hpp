@@ -51,6 +51,9 @@ struct Checkpointing {
   bool keep_when_whole = false;
 };
 
+/// When the next checkpoint is due: the first multiple of `every` (s) after t (s).
+double next_checkpoint_time(double t, double every);
+
 /// Runs the swim, writing pictures/VTK per frame into `out` when given (files go to frames/). With
 /// `checkpoints` (and `out`), writes checkpoints, or continues from one: the outputs are those of
 /// the uninterrupted run, byte for byte. A completed run removes its checkpoint (or, with

@@ -22,6 +22,7 @@
 #include <string>
 
 #include "jellysim/core/parallel.hpp"
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/fluid/schemes.hpp"
 #include "jellysim/fluid3d/boundary_3d.hpp"
 #include "jellysim/fluid3d/grid_3d.hpp"
@@ -69,6 +70,9 @@ class FluidSolver3d {
   virtual PressureReport3d last_pressure_report() const = 0;
   virtual StepTimings3d last_timings() const = 0;
   virtual const FluidSettings3d& settings() const = 0;
+  /// Saves or restores what a step reads from the past (the flow, the body acceleration, the
+  /// clock, the last pressure potential an iterative solver starts from): checkpoints (issue 23).
+  virtual void archive(core::StateArchive& a) = 0;
 };
 
 /// The bytes a solver on this grid allocates (fields, pressure solver buffers), estimated before

@@ -25,6 +25,7 @@
 #include <Eigen/SparseLU>
 
 #include "jellysim/core/parallel.hpp"
+#include "jellysim/core/state_archive.hpp"
 #include "jellysim/fluid3d/fluid_solver_3d.hpp"
 #include "jellysim/fluid3d/pressure_3d.hpp"
 #include "jellysim/ib3d/markers_3d.hpp"
@@ -75,6 +76,9 @@ class ImmersedBoundary3d {
   /// out = R f = J P S f / (ρ V): the marker accelerations (m/s²) the forces f (N, flattened
   /// x0 y0 z0 x1 …) give the fluid at rest, pressure included (one projection).
   void apply_response(const Eigen::VectorXd& f, Eigen::VectorXd& out);
+  /// Saves or restores the coupling's history: its clock, the last increment (GMRES's first
+  /// guess) and the markers (positions, velocities, forces); the fluid archives its own.
+  void archive(core::StateArchive& a);
 
  private:
   CoupledStepReport3d step_explicit(double dt_s);

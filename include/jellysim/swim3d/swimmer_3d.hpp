@@ -122,6 +122,9 @@ class Swimmer3d {
   /// then gives. Throws as advance_frame does.
   bool step_toward_frame();
   const Swim3dTimings& timings() const { return timings_; }
+  /// Saves or restores the run's state for a checkpoint (issue 23): the water, the coupling and
+  /// its markers, the frame clock, the step statistics. The bell's muscles follow the clock alone.
+  void archive(core::StateArchive& a);
 
  private:
   Swim3dSpec spec_;
