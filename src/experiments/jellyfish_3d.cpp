@@ -156,13 +156,8 @@ std::optional<swim3d::Frame3d> next_frame(swim3d::Swimmer3d& swimmer, std::strin
 /// Recorded frames in a checkpoint (both directions).
 void archive_frames_3d(core::StateArchive& a, std::vector<swim3d::Frame3d>& frames) {
   const core::StateArchive::Scope scope(a, "recording");
-  std::size_t count = frames.size();
-  a.value("count", count);
-  if (a.is_restoring()) {
-    if (count > a.entries().size()) throw core::StateMismatch("checkpoint entry 'recording.count' is damaged");
-    frames.assign(count, {});
-  }
-  for (std::size_t f = 0; f < count; ++f) {
+  a.length("count", frames);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
     const core::StateArchive::Scope frame(a, std::to_string(f));
     swim3d::Frame3d& s = frames[f];
     a.value("time", s.time_s);

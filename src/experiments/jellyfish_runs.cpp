@@ -161,13 +161,8 @@ class FrameFiles {
 /// Recorded slice frames in a checkpoint (both directions).
 void archive_frames(core::StateArchive& a, const std::string& name, std::vector<jellyfish::SliceFrame>& frames) {
   const core::StateArchive::Scope scope(a, name);
-  std::size_t count = frames.size();
-  a.value("count", count);
-  if (a.is_restoring()) {
-    if (count > a.entries().size()) throw core::StateMismatch("checkpoint entry '" + name + ".count' is damaged");
-    frames.assign(count, {});
-  }
-  for (std::size_t f = 0; f < count; ++f) {
+  a.length("count", frames);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
     const core::StateArchive::Scope frame(a, std::to_string(f));
     jellyfish::SliceFrame& s = frames[f];
     a.value("time", s.time_s);

@@ -108,6 +108,17 @@ class StateArchive {
                   flat.begin() + static_cast<std::ptrdiff_t>(offset + lengths[k]));
   }
   void text(std::string_view name, std::string& s);
+  /// The length of a sequence whose elements archive themselves one by one (e.g. recorded frames):
+  /// saved, or restored into `v` (resized; a length beyond the entries' count is damage).
+  template <class T>
+  void length(std::string_view name, std::vector<T>& v) {
+    std::size_t count = v.size();
+    value(name, count);
+    if (!restoring_) return;
+    if (count > entries_.size())
+      throw StateMismatch("checkpoint entry '" + prefix_ + std::string(name) + "' is damaged");
+    v.assign(count, T{});
+  }
 
   /// Restoring: throws StateMismatch naming an entry that no archive() function read (a
   /// checkpoint of a different simulation).
