@@ -246,7 +246,9 @@ Row run_grid_3d(const Study& study, std::size_t k, const io::OutputDir& out, con
   row.min_volume_ratio = INFINITY;
   for (std::size_t f = 0; f < rec.frames.size(); ++f) {
     row.min_volume_ratio = std::min(row.min_volume_ratio, rec.frames[f].cavity_volume_m3 / first.cavity_volume_m3);
-    if (f > 0) row.peak_speed_m_per_s = std::max(row.peak_speed_m_per_s, std::abs(along(rec.frames[f]) - along(rec.frames[f - 1])) / dt);
+    if (f == 0) continue;
+    const double speed = std::abs(along(rec.frames[f]) - along(rec.frames[f - 1])) / dt;
+    row.peak_speed_m_per_s = std::max(row.peak_speed_m_per_s, speed);
   }
   return row;
 }

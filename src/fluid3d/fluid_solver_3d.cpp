@@ -349,8 +349,9 @@ double kinetic_energy_3d(const Grid3d& g, const Boundaries3d& b, const Velocity3
 std::uint64_t estimated_memory_bytes_3d(const Grid3d& g, const FluidSettings3d& s) {
   // velocity, body acceleration, predictor, convective fluxes (3 each), pressure, φ, right-hand side
   const std::uint64_t padded = static_cast<std::uint64_t>(g.padded_size()) * sizeof(double);
-  // FFT: two compact buffers (fft_pressure_3d.cpp's layouts); CG: three padded fields; multigrid: three per level, the levels
-  // together under 8/7 of the finest, and the coarsest level's CG (bounded by the same).
+  // FFT: two compact buffers (fft_pressure_3d.cpp's layouts); CG: three padded fields; multigrid:
+  // three per level, the levels together under 8/7 of the finest, and the coarsest level's CG
+  // (bounded by the same).
   const std::uint64_t pressure_solver = s.pressure_solver == "fft"
                                             ? 2 * static_cast<std::uint64_t>(g.cell_count()) * sizeof(double)
                                             : (s.pressure_solver == "cg" ? 3 * padded : 6 * padded);

@@ -87,7 +87,8 @@ void ImmersedBoundary3d::archive(core::StateArchive& a) {
   a.value("time", time_s_);
   std::vector<double> increment(last_increment_.data(), last_increment_.data() + last_increment_.size());
   a.vector("last_increment", increment);
-  if (a.is_restoring()) last_increment_ = Eigen::Map<const Eigen::VectorXd>(increment.data(), static_cast<Eigen::Index>(increment.size()));
+  if (a.is_restoring())
+    last_increment_ = Eigen::Map<const Eigen::VectorXd>(increment.data(), static_cast<Eigen::Index>(increment.size()));
   a.values("marker_position", std::span<Vec3>(markers_.position));
   a.values("marker_velocity", std::span<Vec3>(markers_.velocity));
   a.values("marker_force", std::span<Vec3>(markers_.force));
