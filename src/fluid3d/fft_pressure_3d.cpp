@@ -145,16 +145,16 @@ class FftPressure3d final : public PressureSolver3d {
       *p = nullptr;
     }
   }
-  // The compact index of cell (i, j, k) in a layout.
-  std::size_t at(Layout l, std::size_t i, std::size_t j, std::size_t k) const {
+  // The strides of i, j and k in a layout's compact array.
+  std::array<std::size_t, 3> strides(Layout l) const {
     const auto nx = static_cast<std::size_t>(g_.n(0)), ny = static_cast<std::size_t>(g_.n(1)),
                nz = static_cast<std::size_t>(g_.n(2));
     switch (l) {
-      case Layout::x_fastest: return (k * ny + j) * nx + i;
-      case Layout::y_fastest: return (k * nx + i) * ny + j;
-      case Layout::z_fastest: return (i * ny + j) * nz + k;
+      case Layout::x_fastest: return {1, nx, nx * ny};
+      case Layout::y_fastest: return {ny, 1, nx * ny};
+      case Layout::z_fastest: return {ny * nz, nz, 1};
     }
-    return 0;
+    return {};
   }
   // Copies between the layouts (x_fastest and z_fastest live in x_, y_fastest in y_), split by the
   // destination's outermost index between the pool's threads.
@@ -164,10 +164,11 @@ class FftPressure3d final : public PressureSolver3d {
     const auto nx = static_cast<std::size_t>(g_.n(0)), ny = static_cast<std::size_t>(g_.n(1)),
                nz = static_cast<std::size_t>(g_.n(2));
     const std::size_t outer = to == Layout::z_fastest ? nx : nz;
+    const std::array<std::size_t, 3> s = strides(from);
     const auto body = [&](std::size_t begin, std::size_t end, int) {
       for (std::size_t o = begin; o < end; ++o)
         for_cells_of(to, o, nx, ny, nz, [&](std::size_t i, std::size_t j, std::size_t k, std::size_t n) {
-          dst[n] = src[at(from, i, j, k)];
+          dst[n] = src[i * s[0] + j * s[1] + k * s[2]];
         });
     };
     if (pool_ != nullptr)
@@ -227,7 +228,7 @@ class FftPressure3d final : public PressureSolver3d {
       for (std::size_t i = begin; i < end; ++i)
         for (std::size_t j = 0; j < ny; ++j) {
           const double lxy = axes_[0].eigenvalue[i] + axes_[1].eigenvalue[j];
-          double* line = x_ + at(Layout::z_fastest, i, j, 0);
+          double* line = x_ + (i * ny + j) * nz;  // the z-fastest layout's line (i, j)
           for (std::size_t k = 0; k < nz; ++k) {
             const double lambda = lxy + axes_[2].eigenvalue[k];
             line[k] = lambda == 0.0 ? 0.0 : line[k] / (lambda * scale);
